@@ -1,0 +1,16 @@
+//! What every steadyray renderer backend shares: the [`Renderer`] trait, the settings of a
+//! frame, what a frame reports, the linear image, and the rules both backends must follow
+//! bit for bit (sample pattern, fractional-S dither, branch random numbers, tone map).
+//! `docs/shading.md` is the prose version of the same contract.
+
+pub mod image;
+pub mod renderer;
+pub mod sampling;
+pub mod settings;
+pub mod stats;
+pub mod tonemap;
+
+pub use image::Image;
+pub use renderer::{BackendInfo, RenderError, Renderer};
+pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError};
+pub use stats::{FrameStats, RayCounts, TimingSource};

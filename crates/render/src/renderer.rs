@@ -1,0 +1,47 @@
+//! The interface every renderer backend implements.
+
+use crate::{FrameStats, Image, RenderSettings, SettingsError};
+use steadyray_scene::{Camera, Scene};
+use thiserror::Error;
+
+/// Which backend and device rendered a frame, for reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BackendInfo {
+    /// "cpu" or "gpu".
+    pub backend: String,
+    /// The device: the CPU model and thread count, or the GPU adapter's name and driver.
+    pub device: String,
+}
+
+/// Why a renderer could not render.
+#[derive(Debug, Error)]
+pub enum RenderError {
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
+    #[error("no scene loaded: call load_scene first")]
+    NoScene,
+    #[error("no frame rendered yet: render before reading the image")]
+    NoFrame,
+    #[error("scene cannot be rendered by this backend: {0}")]
+    Scene(String),
+    #[error("GPU error: {0}")]
+    Gpu(String),
+}
+
+/// A ray tracer backend. A scene is loaded once; frames are then rendered from any camera
+/// at any quality, and the image of the last frame is read back only when asked for, so
+/// timed loops never pay for readback.
+pub trait Renderer {
+    /// The backend and device, for reports.
+    fn info(&self) -> BackendInfo;
+    /// Prepares `scene` (acceleration structures, GPU buffers); replaces any earlier scene.
+    fn load_scene(&mut self, scene: &Scene) -> Result<(), RenderError>;
+    /// Renders one frame and reports its time and exact ray counts.
+    fn render(
+        &mut self,
+        camera: &Camera,
+        settings: &RenderSettings,
+    ) -> Result<FrameStats, RenderError>;
+    /// The linear image of the last rendered frame.
+    fn read_image(&mut self) -> Result<Image, RenderError>;
+}

@@ -1,0 +1,56 @@
+//! The quality and size of one frame.
+
+use thiserror::Error;
+
+/// The largest reflection/refraction depth R a renderer accepts.
+pub const MAX_DEPTH: u32 = 64;
+/// The largest number of eye rays per pixel S a renderer accepts.
+pub const MAX_SPP: f32 = 4096.0;
+
+/// What to render: image size, eye rays per pixel S (fractional: see
+/// [`crate::sampling::samples_for_pixel`]) and the largest reflection/refraction depth R.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    pub spp: f32,
+    pub max_depth: u32,
+}
+
+/// Why a [`RenderSettings`] cannot be rendered.
+#[derive(Debug, Error, PartialEq)]
+pub enum SettingsError {
+    #[error("image size {width}x{height} is empty: width and height must be at least 1")]
+    EmptyImage { width: u32, height: u32 },
+    #[error("image size {width}x{height} is too large (at most 16384 on a side)")]
+    ImageTooLarge { width: u32, height: u32 },
+    #[error("samples per pixel S = {0} is out of range: it must be a number in [1, {MAX_SPP}]")]
+    BadSpp(f32),
+    #[error("reflection depth R = {0} is out of range: at most {MAX_DEPTH}")]
+    BadDepth(u32),
+}
+
+impl RenderSettings {
+    /// Checks the settings, so renderers never see an empty image or a NaN sample count.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let (width, height) = (self.width, self.height);
+        if width == 0 || height == 0 {
+            return Err(SettingsError::EmptyImage { width, height });
+        }
+        if width > 16384 || height > 16384 {
+            return Err(SettingsError::ImageTooLarge { width, height });
+        }
+        if !(self.spp >= 1.0 && self.spp <= MAX_SPP) {
+            return Err(SettingsError::BadSpp(self.spp));
+        }
+        if self.max_depth > MAX_DEPTH {
+            return Err(SettingsError::BadDepth(self.max_depth));
+        }
+        Ok(())
+    }
+
+    /// Number of pixels.
+    pub fn pixels(&self) -> u64 {
+        self.width as u64 * self.height as u64
+    }
+}

@@ -1,0 +1,72 @@
+//! What a rendered frame reports: its time and the exact rays it traced.
+
+/// Rays traced in one frame, counted exactly.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// `per_depth[k]` = rays traced after k reflection/refraction events (k = 0: eye rays).
+    /// Its length is R + 1 for a frame rendered with depth R.
+    pub per_depth: Vec<u64>,
+    /// Shadow rays toward point lights.
+    pub shadow: u64,
+}
+
+impl RayCounts {
+    /// Zero counts for a frame of depth `max_depth`.
+    pub fn zeros(max_depth: u32) -> Self {
+        Self {
+            per_depth: vec![0; max_depth as usize + 1],
+            shadow: 0,
+        }
+    }
+
+    /// Eye, secondary and shadow rays together.
+    pub fn total(&self) -> u64 {
+        self.per_depth.iter().sum::<u64>() + self.shadow
+    }
+
+    /// Adds another count of the same depth (used to merge per-tile or per-workgroup counts).
+    pub fn add(&mut self, other: &RayCounts) {
+        if self.per_depth.len() < other.per_depth.len() {
+            self.per_depth.resize(other.per_depth.len(), 0);
+        }
+        for (a, b) in self.per_depth.iter_mut().zip(&other.per_depth) {
+            *a += b;
+        }
+        self.shadow += other.shadow;
+    }
+}
+
+/// Where a frame's render time came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TimingSource {
+    /// GPU timestamp queries around the render dispatches.
+    GpuTimestamps,
+    /// The host's monotonic clock around the render (CPU backend, or GPUs without timestamps).
+    WallClock,
+}
+
+/// The measurements of one rendered frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameStats {
+    /// Tp: the image-generation time, in milliseconds.
+    pub render_ms: f64,
+    /// Host wall-clock time of the whole `render` call (submit and wait included), ms.
+    pub wall_ms: f64,
+    pub timing: TimingSource,
+    pub rays: RayCounts,
+    pub width: u32,
+    pub height: u32,
+    /// Eye samples actually taken (S × pixels, with fractional S dithered).
+    pub samples: u64,
+}
+
+impl FrameStats {
+    /// Rays per second over the render time.
+    pub fn rays_per_second(&self) -> f64 {
+        if self.render_ms > 0.0 {
+            self.rays.total() as f64 / (self.render_ms * 1e-3)
+        } else {
+            0.0
+        }
+    }
+}

@@ -1,0 +1,42 @@
+//! The whole scene: objects, materials, lights, environment, camera and camera path.
+
+use crate::{Camera, CameraPath, Material, PointLight, Shape};
+use glam::Vec3;
+
+/// A shape with a name (for messages and round-trips) and an index into `Scene::materials`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    pub name: String,
+    pub shape: Shape,
+    pub material: usize,
+}
+
+/// A complete, validated scene, ready for any renderer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub name: String,
+    /// Named materials; objects refer to them by index.
+    pub materials: Vec<(String, Material)>,
+    pub objects: Vec<Object>,
+    pub lights: Vec<PointLight>,
+    /// Ambient term, as a fraction of the albedo (`docs/shading.md`).
+    pub ambient: f32,
+    /// Radiance of rays that leave the scene.
+    pub background: Vec3,
+    /// The scene's own camera (frame 0 of its path).
+    pub camera: Camera,
+    /// How the camera moves in `bench` and `view`.
+    pub path: CameraPath,
+}
+
+impl Scene {
+    /// The material of object `i`.
+    pub fn material_of(&self, object: usize) -> &Material {
+        &self.materials[self.objects[object].material].1
+    }
+
+    /// The camera for frame `k` of `n` along the scene's path.
+    pub fn camera_at(&self, k: u32, n: u32) -> Camera {
+        self.path.camera(&self.camera, k, n)
+    }
+}
