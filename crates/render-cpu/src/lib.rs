@@ -1,1 +1,152 @@
-//! CPU renderer.
+//! The reference Whitted ray tracer of steadyray, on the CPU with rayon.
+//!
+//! It computes exactly the shading model of `docs/shading.md` in `f32`; the GPU backend is
+//! checked against it. Spheres, two-sided quads, infinite planes and triangle meshes (with a
+//! watertight triangle test) are intersected by brute force over flat per-type lists.
+
+mod device;
+mod integrator;
+mod material;
+pub mod optics;
+mod plane;
+mod probe;
+mod quad;
+mod ray;
+mod render;
+mod sphere;
+mod triangle;
+mod world;
+
+pub use probe::{PathTrace, TracedRay};
+pub use ray::{EPS, T_MIN};
+
+use glam::{Vec3, Vec3A};
+use integrator::{SampleId, trace};
+use std::time::Instant;
+use steadyray_render::{
+    BackendInfo, FrameStats, Image, MAX_DEPTH, RenderError, RenderSettings, Renderer,
+    SettingsError, TimingSource,
+};
+use steadyray_scene::{Camera, Scene};
+use world::World;
+
+/// The CPU renderer: a prepared scene, its own rayon thread pool, and the image of the last
+/// frame (reused across frames of the same size).
+pub struct CpuRenderer {
+    pool: rayon::ThreadPool,
+    world: Option<World>,
+    image: Option<Image>,
+}
+
+impl Default for CpuRenderer {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl CpuRenderer {
+    /// A renderer using one thread per available CPU.
+    ///
+    /// # Panics
+    /// If the operating system cannot start the worker threads.
+    pub fn new() -> Self {
+        Self::with_threads(0)
+    }
+
+    /// A renderer using `threads` worker threads (0: one per available CPU).
+    ///
+    /// # Panics
+    /// If the operating system cannot start the worker threads.
+    pub fn with_threads(threads: usize) -> Self {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(|i| format!("steadyray-cpu-{i}"))
+            .build()
+            .expect("cannot start the CPU renderer's worker threads");
+        Self {
+            pool,
+            world: None,
+            image: None,
+        }
+    }
+
+    /// The number of worker threads.
+    pub fn threads(&self) -> usize {
+        self.pool.current_num_threads()
+    }
+
+    /// Traces one ray from `origin` along `dir` exactly as the eye sample `sample` of pixel
+    /// `pixel` would be traced with depth `max_depth` (the pixel and sample only choose the
+    /// dielectric branches), and returns its whole path.
+    pub fn trace_ray(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        pixel: (u32, u32),
+        sample: u32,
+        max_depth: u32,
+    ) -> Result<PathTrace, RenderError> {
+        if max_depth > MAX_DEPTH {
+            return Err(SettingsError::BadDepth(max_depth).into());
+        }
+        let world = self.world.as_ref().ok_or(RenderError::NoScene)?;
+        let mut path = PathTrace::default();
+        let id = SampleId {
+            px: pixel.0,
+            py: pixel.1,
+            sample,
+        };
+        let ray = ray::Ray::new(origin.into(), Vec3A::from(dir));
+        path.radiance = trace(world, ray, id, max_depth, &mut path).into();
+        Ok(path)
+    }
+}
+
+impl Renderer for CpuRenderer {
+    fn info(&self) -> BackendInfo {
+        let model = device::cpu_model().unwrap_or_else(|| "unknown CPU".to_string());
+        BackendInfo {
+            backend: "cpu".to_string(),
+            device: format!("{model} ({} threads)", self.threads()),
+        }
+    }
+
+    fn load_scene(&mut self, scene: &Scene) -> Result<(), RenderError> {
+        self.world = Some(World::new(scene)?);
+        Ok(())
+    }
+
+    fn render(
+        &mut self,
+        camera: &Camera,
+        settings: &RenderSettings,
+    ) -> Result<FrameStats, RenderError> {
+        settings.validate()?;
+        let world = self.world.as_ref().ok_or(RenderError::NoScene)?;
+        let (width, height) = (settings.width, settings.height);
+        let image = match &mut self.image {
+            Some(img) if img.width == width && img.height == height => img,
+            slot => slot.insert(Image::new(width, height)),
+        };
+        let start = Instant::now();
+        let frame = camera.frame(width, height);
+        let counts = self
+            .pool
+            .install(|| render::render_frame(world, &frame, settings, &mut image.pixels));
+        let rays = counts.ray_counts(settings.max_depth);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok(FrameStats {
+            render_ms: ms,
+            wall_ms: ms,
+            timing: TimingSource::WallClock,
+            samples: rays.per_depth[0],
+            rays,
+            width,
+            height,
+        })
+    }
+
+    fn read_image(&mut self) -> Result<Image, RenderError> {
+        self.image.clone().ok_or(RenderError::NoFrame)
+    }
+}
