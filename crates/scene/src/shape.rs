@@ -17,7 +17,10 @@ pub enum Shape {
         edge_v: Vec3,
     },
     /// A two-sided infinite plane through `point` with unit `normal`.
-    Plane { point: Vec3, normal: Vec3 },
+    Plane {
+        point: Vec3,
+        normal: Vec3,
+    },
     /// Triangles already placed in world space.
     Mesh(TriangleMesh),
 }

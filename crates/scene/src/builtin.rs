@@ -1,0 +1,74 @@
+//! The built-in scenes, written in the TOML scene format (`crates/scene/builtin/*.toml`) and
+//! embedded in the binary, so that every backend, test and benchmark can name them.
+
+use crate::Scene;
+use crate::error::{SceneError, SceneErrorKind};
+use crate::format::parse_scene;
+
+/// The scene used when none is named: the paper's benchmark corridor (`spec/corridor.md`).
+pub const DEFAULT_SCENE: &str = "corridor";
+
+/// A built-in scene: its name, a one-line description (for `steadyray scenes`) and its TOML.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BuiltinScene {
+    pub name: &'static str,
+    pub description: &'static str,
+    pub toml: &'static str,
+}
+
+const BUILTINS: [BuiltinScene; 3] = [
+    BuiltinScene {
+        name: "corridor",
+        description: "the paper's benchmark: a mirror-lined corridor with coloured, glass and \
+                      chrome spheres, camera sweeping a full turn (spec/corridor.md)",
+        toml: include_str!("../builtin/corridor.toml"),
+    },
+    BuiltinScene {
+        name: "cornell",
+        description: "a closed Cornell box (red and green walls) with a mirror and a glass \
+                      sphere, lit from under the ceiling, camera turning inside",
+        toml: include_str!("../builtin/cornell.toml"),
+    },
+    BuiltinScene {
+        name: "spheres",
+        description: "a 9x9 field of diffuse, mirror and glass spheres on a checker plane \
+                      under four lights, camera orbiting",
+        toml: include_str!("../builtin/spheres.toml"),
+    },
+];
+
+const NAMES: [&str; 3] = [BUILTINS[0].name, BUILTINS[1].name, BUILTINS[2].name];
+
+/// The names of the built-in scenes, default first.
+pub fn builtin_names() -> &'static [&'static str] {
+    &NAMES
+}
+
+/// Every built-in scene with its description and source.
+pub fn builtin_scenes() -> &'static [BuiltinScene] {
+    &BUILTINS
+}
+
+/// The one-line description of built-in scene `name`.
+pub fn builtin_description(name: &str) -> Option<&'static str> {
+    BUILTINS
+        .iter()
+        .find(|b| b.name == name)
+        .map(|b| b.description)
+}
+
+/// The built-in scene `name`, parsed from its embedded TOML (origin `builtin/<name>.toml`).
+pub fn builtin(name: &str) -> Result<Scene, SceneError> {
+    match BUILTINS.iter().find(|b| b.name == name) {
+        Some(b) => parse_scene(b.toml, &format!("builtin/{}.toml", b.name), None),
+        None => Err(SceneError::new(
+            name,
+            None,
+            SceneErrorKind::UnknownScene,
+            format!(
+                "no built-in scene of that name (built-ins: {})",
+                NAMES.join(", ")
+            ),
+        )),
+    }
+}

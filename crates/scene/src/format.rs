@@ -1,0 +1,802 @@
+//! Reading the TOML scene format (`docs/scene-format.md`): the file's schema, and the checks
+//! that turn it into a valid [`Scene`] or a [`SceneError`] naming the file, the line and the
+//! problem. Nothing here panics on any input.
+
+use crate::error::{SceneError, SceneErrorKind, line_of};
+use crate::mesh_import::{self, MeshTransform};
+use crate::{Camera, CameraPath, Checker, Material, Object, PointLight, Scene, Shape};
+use glam::Vec3;
+use serde::Deserialize;
+use std::collections::HashMap;
+use std::fmt;
+use std::ops::Range;
+use std::path::Path;
+use toml::Spanned;
+
+/// Frames of a camera path when the file gives none.
+pub const DEFAULT_FRAMES: u32 = 720;
+/// Vertical field of view, degrees, when the file gives none.
+pub const DEFAULT_VFOV_DEG: f32 = 60.0;
+
+/// Parses a scene file's text. `origin` names the file in error messages; mesh paths are
+/// relative to `base_dir` (the current directory when `None`).
+pub fn parse_scene(text: &str, origin: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+    parse_scene_with_notes(text, origin, base_dir).map(|(scene, _)| scene)
+}
+
+/// As [`parse_scene`], also returning notes about what loading changed without failing
+/// (such as degenerate mesh triangles that were dropped), one line each, for the user.
+pub fn parse_scene_with_notes(
+    text: &str,
+    origin: &str,
+    base_dir: Option<&Path>,
+) -> Result<(Scene, Vec<String>), SceneError> {
+    let raw: RawScene = toml::from_str(text).map_err(|e| {
+        let line = e.span().map(|s| line_of(text, s.start));
+        let mut message = e.message().trim_end().to_owned();
+        // Quote the offending line, which names the key that toml's message leaves out.
+        if let Some(quoted) = line.and_then(|l| text.lines().nth(l - 1)).map(str::trim)
+            && !quoted.is_empty()
+            && quoted.len() <= 100
+        {
+            message = format!("{message} (in `{quoted}`)");
+        }
+        SceneError::new(origin, line, SceneErrorKind::Syntax, message)
+    })?;
+    let mut cx = Cx {
+        origin,
+        text,
+        base_dir,
+        notes: Vec::new(),
+    };
+    let scene = cx.scene(raw)?;
+    Ok((scene, cx.notes))
+}
+
+/// Three numbers, or one number meaning all three (grey colours, uniform scale).
+#[derive(Clone, Copy, Debug)]
+struct Triple([f32; 3]);
+
+impl<'de> Deserialize<'de> for Triple {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = Triple;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a number or an array of three numbers")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Triple, E> {
+                Ok(Triple([v as f32; 3]))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Triple, E> {
+                Ok(Triple([v as f32; 3]))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Triple, E> {
+                Ok(Triple([v as f32; 3]))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, seq: A) -> Result<Triple, A::Error> {
+                <[f32; 3]>::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))
+                    .map(Triple)
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+type V3 = [f32; 3];
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScene {
+    name: Option<Spanned<String>>,
+    background: Option<Spanned<Triple>>,
+    ambient: Option<Spanned<f32>>,
+    camera: Spanned<RawCamera>,
+    path: Option<Spanned<RawPath>>,
+    #[serde(default)]
+    materials: Vec<Spanned<RawMaterial>>,
+    #[serde(default)]
+    shapes: Vec<Spanned<RawShape>>,
+    #[serde(default)]
+    lights: Vec<Spanned<RawLight>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCamera {
+    eye: Spanned<V3>,
+    target: Option<Spanned<V3>>,
+    forward: Option<Spanned<V3>>,
+    yaw_deg: Option<Spanned<f32>>,
+    pitch_deg: Option<Spanned<f32>>,
+    up: Option<Spanned<V3>>,
+    vfov_deg: Option<Spanned<f32>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPath {
+    #[serde(rename = "type")]
+    kind: Spanned<String>,
+    frames: Option<Spanned<u32>>,
+    center: Option<Spanned<V3>>,
+    radius: Option<Spanned<f32>>,
+    height: Option<Spanned<f32>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMaterial {
+    name: Spanned<String>,
+    #[serde(rename = "type")]
+    kind: Spanned<String>,
+    albedo: Option<Spanned<Triple>>,
+    checker: Option<Spanned<RawChecker>>,
+    reflectance: Option<Spanned<Triple>>,
+    ior: Option<Spanned<f32>>,
+    tint: Option<Spanned<Triple>>,
+    radiance: Option<Spanned<Triple>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawChecker {
+    size: Spanned<f32>,
+    albedo_b: Spanned<Triple>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawShape {
+    name: Spanned<String>,
+    #[serde(rename = "type")]
+    kind: Spanned<String>,
+    material: Spanned<String>,
+    center: Option<Spanned<V3>>,
+    radius: Option<Spanned<f32>>,
+    corner: Option<Spanned<V3>>,
+    edge_u: Option<Spanned<V3>>,
+    edge_v: Option<Spanned<V3>>,
+    point: Option<Spanned<V3>>,
+    normal: Option<Spanned<V3>>,
+    path: Option<Spanned<String>>,
+    positions: Option<Spanned<Vec<V3>>>,
+    triangles: Option<Spanned<Vec<[u32; 3]>>>,
+    translate: Option<Spanned<V3>>,
+    scale: Option<Spanned<Triple>>,
+    rotate_y_deg: Option<Spanned<f32>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLight {
+    position: Spanned<V3>,
+    intensity: Spanned<Triple>,
+}
+
+/// The optional keys of a table that are present, with where they are, so that keys which
+/// do not belong to the table's `type` can be reported.
+macro_rules! present_keys {
+    ($raw:expr, $($field:ident),*) => {{
+        let mut keys: Vec<(&'static str, Range<usize>)> = Vec::new();
+        $( if let Some(v) = &$raw.$field { keys.push((stringify!($field), v.span())); } )*
+        keys
+    }};
+}
+
+/// Parsing context: the file (for messages and mesh paths) and the notes gathered so far.
+struct Cx<'a> {
+    origin: &'a str,
+    text: &'a str,
+    base_dir: Option<&'a Path>,
+    notes: Vec<String>,
+}
+
+impl Cx<'_> {
+    fn err(&self, span: Range<usize>, kind: SceneErrorKind, msg: String) -> SceneError {
+        SceneError::new(self.origin, Some(line_of(self.text, span.start)), kind, msg)
+    }
+
+    fn invalid(&self, span: Range<usize>, msg: String) -> SceneError {
+        self.err(span, SceneErrorKind::Invalid, msg)
+    }
+
+    fn scene(&mut self, raw: RawScene) -> Result<Scene, SceneError> {
+        let name = match &raw.name {
+            Some(n) => n.get_ref().clone(),
+            None => Path::new(self.origin)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        };
+        let background = match &raw.background {
+            Some(b) => self.colour("scene", "background", b)?,
+            None => Vec3::ZERO,
+        };
+        let ambient = match &raw.ambient {
+            Some(a) => self.non_negative("scene", "ambient", a)?,
+            None => 0.0,
+        };
+        let camera = self.camera(&raw.camera)?;
+        let path = match &raw.path {
+            Some(p) => self.path(p)?,
+            None => CameraPath::Sweep {
+                frames: DEFAULT_FRAMES,
+            },
+        };
+
+        let mut materials = Vec::with_capacity(raw.materials.len());
+        let mut material_index: HashMap<&str, usize> = HashMap::new();
+        for m in &raw.materials {
+            let name = self.unique_name("material", &m.get_ref().name, &material_index)?;
+            material_index.insert(name, materials.len());
+            materials.push((name.to_owned(), self.material(m)?));
+        }
+
+        let mut objects = Vec::with_capacity(raw.shapes.len());
+        let mut shape_names: HashMap<&str, usize> = HashMap::new();
+        for s in &raw.shapes {
+            let r = s.get_ref();
+            let name = self.unique_name("shape", &r.name, &shape_names)?;
+            shape_names.insert(name, objects.len());
+            let material = match material_index.get(r.material.get_ref().as_str()) {
+                Some(&i) => i,
+                None => {
+                    let known: Vec<&str> = materials.iter().map(|(n, _)| n.as_str()).collect();
+                    return Err(self.invalid(
+                        r.material.span(),
+                        format!(
+                            "shape {name:?}: unknown material {:?} (materials: {})",
+                            r.material.get_ref(),
+                            if known.is_empty() {
+                                "none defined".to_owned()
+                            } else {
+                                known.join(", ")
+                            }
+                        ),
+                    ));
+                }
+            };
+            objects.push(Object {
+                name: name.to_owned(),
+                shape: self.shape(s, name)?,
+                material,
+            });
+        }
+
+        let lights = raw
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let label = format!("light {}", i + 1);
+                let r = l.get_ref();
+                Ok(PointLight {
+                    position: self.vec3(&label, "position", &r.position)?,
+                    intensity: self.colour(&label, "intensity", &r.intensity)?,
+                })
+            })
+            .collect::<Result<_, SceneError>>()?;
+
+        Ok(Scene {
+            name,
+            materials,
+            objects,
+            lights,
+            ambient,
+            background,
+            camera,
+            path,
+        })
+    }
+
+    fn unique_name<'n>(
+        &self,
+        what: &str,
+        name: &'n Spanned<String>,
+        seen: &HashMap<&str, usize>,
+    ) -> Result<&'n str, SceneError> {
+        let n = name.get_ref().as_str();
+        if n.is_empty() {
+            return Err(self.invalid(name.span(), format!("{what} name must not be empty")));
+        }
+        if let Some(first) = seen.get(n) {
+            return Err(self.invalid(
+                name.span(),
+                format!(
+                    "duplicate {what} name {n:?} (already used by {what} {})",
+                    first + 1
+                ),
+            ));
+        }
+        Ok(n)
+    }
+
+    fn camera(&self, raw: &Spanned<RawCamera>) -> Result<Camera, SceneError> {
+        let r = raw.get_ref();
+        let label = "camera";
+        let eye = self.vec3(label, "eye", &r.eye)?;
+        let up = match &r.up {
+            Some(u) => self.nonzero(label, "up", u)?,
+            None => Vec3::Y,
+        };
+        let vfov_deg = match &r.vfov_deg {
+            Some(v) => {
+                let f = self.number(label, "vfov_deg", v)?;
+                if !(f > 0.0 && f < 180.0) {
+                    return Err(self.invalid(
+                        v.span(),
+                        format!("camera: vfov_deg must be in (0, 180) degrees, got {f}"),
+                    ));
+                }
+                f
+            }
+            None => DEFAULT_VFOV_DEG,
+        };
+        if r.pitch_deg.is_some() && r.yaw_deg.is_none() {
+            let span = r.pitch_deg.as_ref().map_or(raw.span(), |p| p.span());
+            return Err(self.invalid(span, "camera: pitch_deg needs yaw_deg".to_owned()));
+        }
+        let given = [
+            r.target.as_ref().map(|t| ("target", t.span())),
+            r.forward.as_ref().map(|f| ("forward", f.span())),
+            r.yaw_deg.as_ref().map(|y| ("yaw_deg", y.span())),
+        ];
+        let given: Vec<_> = given.into_iter().flatten().collect();
+        if given.len() != 1 {
+            let span = given.get(1).map_or(raw.span(), |g| g.1.clone());
+            return Err(self.invalid(
+                span,
+                format!(
+                    "camera: give exactly one of `target`, `forward` or `yaw_deg` (got {})",
+                    if given.is_empty() {
+                        "none".to_owned()
+                    } else {
+                        given.iter().map(|g| g.0).collect::<Vec<_>>().join(", ")
+                    }
+                ),
+            ));
+        }
+        let camera = if let Some(t) = &r.target {
+            let target = self.vec3(label, "target", t)?;
+            if target == eye {
+                return Err(
+                    self.invalid(t.span(), "camera: target must differ from eye".to_owned())
+                );
+            }
+            Camera::look_at(eye, target, up, vfov_deg)
+        } else if let Some(f) = &r.forward {
+            Camera {
+                eye,
+                forward: unit(self.nonzero(label, "forward", f)?),
+                up,
+                vfov_deg,
+            }
+        } else {
+            let yaw = r
+                .yaw_deg
+                .as_ref()
+                .map_or(Ok(0.0), |y| self.number(label, "yaw_deg", y))?;
+            let pitch = r
+                .pitch_deg
+                .as_ref()
+                .map_or(Ok(0.0), |p| self.number(label, "pitch_deg", p))?;
+            yaw_pitch_deg_camera(eye, yaw, pitch, up, vfov_deg)
+        };
+        let f = camera.forward;
+        if f.cross(up).length() <= 1e-6 * f.length() * up.length() {
+            return Err(self.invalid(
+                raw.span(),
+                format!("camera: view direction {f} is parallel to up {up}"),
+            ));
+        }
+        Ok(camera)
+    }
+
+    fn path(&self, raw: &Spanned<RawPath>) -> Result<CameraPath, SceneError> {
+        let r = raw.get_ref();
+        let label = "path";
+        let frames = match &r.frames {
+            Some(f) if *f.get_ref() == 0 => {
+                return Err(self.invalid(f.span(), "path: frames must be at least 1, got 0".into()));
+            }
+            Some(f) => *f.get_ref(),
+            None => DEFAULT_FRAMES,
+        };
+        let keys = present_keys!(r, center, radius, height);
+        match r.kind.get_ref().as_str() {
+            "sweep" => {
+                self.only_keys(label, "a sweep path", &keys, &[])?;
+                Ok(CameraPath::Sweep { frames })
+            }
+            "orbit" => {
+                self.only_keys(
+                    label,
+                    "an orbit path",
+                    &keys,
+                    &["center", "radius", "height"],
+                )?;
+                let center = self.vec3(
+                    label,
+                    "center",
+                    self.required(label, "center", &r.center, raw)?,
+                )?;
+                let radius = self.positive(
+                    label,
+                    "radius",
+                    self.required(label, "radius", &r.radius, raw)?,
+                )?;
+                let height = match &r.height {
+                    Some(h) => self.number(label, "height", h)?,
+                    None => 0.0,
+                };
+                Ok(CameraPath::Orbit {
+                    center,
+                    radius,
+                    height,
+                    frames,
+                })
+            }
+            other => Err(self.invalid(
+                r.kind.span(),
+                format!("path: unknown path type {other:?} (expected \"sweep\" or \"orbit\")"),
+            )),
+        }
+    }
+
+    fn material(&self, raw: &Spanned<RawMaterial>) -> Result<Material, SceneError> {
+        let r = raw.get_ref();
+        let label = &format!("material {:?}", r.name.get_ref());
+        let keys = present_keys!(r, albedo, checker, reflectance, ior, tint, radiance);
+        match r.kind.get_ref().as_str() {
+            "diffuse" => {
+                self.only_keys(label, "a diffuse material", &keys, &["albedo", "checker"])?;
+                let albedo = self.colour(
+                    label,
+                    "albedo",
+                    self.required(label, "albedo", &r.albedo, raw)?,
+                )?;
+                let checker = match &r.checker {
+                    Some(c) => {
+                        let c = c.get_ref();
+                        Some(Checker {
+                            size: self.positive(label, "checker.size", &c.size)?,
+                            albedo_b: self.colour(label, "checker.albedo_b", &c.albedo_b)?,
+                        })
+                    }
+                    None => None,
+                };
+                Ok(Material::Diffuse { albedo, checker })
+            }
+            "mirror" => {
+                self.only_keys(label, "a mirror material", &keys, &["reflectance"])?;
+                let reflectance = self.colour(
+                    label,
+                    "reflectance",
+                    self.required(label, "reflectance", &r.reflectance, raw)?,
+                )?;
+                Ok(Material::Mirror { reflectance })
+            }
+            "dielectric" => {
+                self.only_keys(label, "a dielectric material", &keys, &["ior", "tint"])?;
+                let ior = self.positive(label, "ior", self.required(label, "ior", &r.ior, raw)?)?;
+                let tint = match &r.tint {
+                    Some(t) => self.colour(label, "tint", t)?,
+                    None => Vec3::ONE,
+                };
+                Ok(Material::Dielectric { ior, tint })
+            }
+            "emissive" => {
+                self.only_keys(label, "an emissive material", &keys, &["radiance"])?;
+                let radiance = self.colour(
+                    label,
+                    "radiance",
+                    self.required(label, "radiance", &r.radiance, raw)?,
+                )?;
+                Ok(Material::Emissive { radiance })
+            }
+            other => Err(self.invalid(
+                r.kind.span(),
+                format!(
+                    "{label}: unknown material type {other:?} \
+                     (expected \"diffuse\", \"mirror\", \"dielectric\" or \"emissive\")"
+                ),
+            )),
+        }
+    }
+
+    fn shape(&mut self, raw: &Spanned<RawShape>, name: &str) -> Result<Shape, SceneError> {
+        let r = raw.get_ref();
+        let label = &format!("shape {name:?}");
+        let keys = present_keys!(
+            r,
+            center,
+            radius,
+            corner,
+            edge_u,
+            edge_v,
+            point,
+            normal,
+            path,
+            positions,
+            triangles,
+            translate,
+            scale,
+            rotate_y_deg
+        );
+        match r.kind.get_ref().as_str() {
+            "sphere" => {
+                self.only_keys(label, "a sphere", &keys, &["center", "radius"])?;
+                let center = self.vec3(
+                    label,
+                    "center",
+                    self.required(label, "center", &r.center, raw)?,
+                )?;
+                let radius = self.positive(
+                    label,
+                    "radius",
+                    self.required(label, "radius", &r.radius, raw)?,
+                )?;
+                Ok(Shape::Sphere { center, radius })
+            }
+            "quad" => {
+                self.only_keys(label, "a quad", &keys, &["corner", "edge_u", "edge_v"])?;
+                let corner = self.vec3(
+                    label,
+                    "corner",
+                    self.required(label, "corner", &r.corner, raw)?,
+                )?;
+                let eu = self.required(label, "edge_u", &r.edge_u, raw)?;
+                let ev = self.required(label, "edge_v", &r.edge_v, raw)?;
+                let edge_u = self.nonzero(label, "edge_u", eu)?;
+                let edge_v = self.nonzero(label, "edge_v", ev)?;
+                if edge_u.cross(edge_v).length() <= 1e-6 * edge_u.length() * edge_v.length() {
+                    return Err(self.invalid(
+                        ev.span(),
+                        format!("{label}: edge_u {edge_u} and edge_v {edge_v} are parallel"),
+                    ));
+                }
+                Ok(Shape::Quad {
+                    corner,
+                    edge_u,
+                    edge_v,
+                })
+            }
+            "plane" => {
+                self.only_keys(label, "a plane", &keys, &["point", "normal"])?;
+                let point = self.vec3(
+                    label,
+                    "point",
+                    self.required(label, "point", &r.point, raw)?,
+                )?;
+                let normal = self.nonzero(
+                    label,
+                    "normal",
+                    self.required(label, "normal", &r.normal, raw)?,
+                )?;
+                Ok(Shape::Plane {
+                    point,
+                    normal: unit(normal),
+                })
+            }
+            "mesh" => {
+                self.only_keys(
+                    label,
+                    "a mesh",
+                    &keys,
+                    &[
+                        "path",
+                        "positions",
+                        "triangles",
+                        "translate",
+                        "scale",
+                        "rotate_y_deg",
+                    ],
+                )?;
+                self.mesh(raw, label)
+            }
+            other => Err(self.invalid(
+                r.kind.span(),
+                format!(
+                    "{label}: unknown shape type {other:?} \
+                     (expected \"sphere\", \"quad\", \"plane\" or \"mesh\")"
+                ),
+            )),
+        }
+    }
+
+    fn mesh(&mut self, raw: &Spanned<RawShape>, label: &str) -> Result<Shape, SceneError> {
+        let r = raw.get_ref();
+        let mut transform = MeshTransform::default();
+        if let Some(t) = &r.translate {
+            transform.translate = self.vec3(label, "translate", t)?;
+        }
+        if let Some(s) = &r.scale {
+            let scale = Vec3::from(s.get_ref().0);
+            if !scale.is_finite() || scale.cmpeq(Vec3::ZERO).any() {
+                return Err(self.invalid(
+                    s.span(),
+                    format!("{label}: scale must be finite and non-zero, got {scale}"),
+                ));
+            }
+            transform.scale = scale;
+        }
+        if let Some(a) = &r.rotate_y_deg {
+            transform.rotate_y_deg = self.number(label, "rotate_y_deg", a)?;
+        }
+        let imported = match (&r.path, &r.positions, &r.triangles) {
+            (Some(path), None, None) => {
+                let file = match self.base_dir {
+                    Some(dir) => dir.join(path.get_ref()),
+                    None => Path::new(path.get_ref()).to_owned(),
+                };
+                mesh_import::import_mesh(&file, &transform).map_err(|e| {
+                    self.err(
+                        path.span(),
+                        SceneErrorKind::Mesh,
+                        format!("{label}: mesh {:?}: {e}", path.get_ref()),
+                    )
+                })?
+            }
+            (None, Some(p), Some(t)) => {
+                let positions = p.get_ref().iter().map(|&v| Vec3::from(v)).collect();
+                mesh_import::build_mesh(positions, t.get_ref().clone(), &transform).map_err(
+                    |e| self.err(p.span(), SceneErrorKind::Mesh, format!("{label}: {e}")),
+                )?
+            }
+            _ => {
+                return Err(self.invalid(
+                    raw.span(),
+                    format!(
+                        "{label}: a mesh needs either `path` (a mesh file) or both \
+                         `positions` and `triangles`, not both"
+                    ),
+                ));
+            }
+        };
+        if imported.degenerate_dropped > 0 {
+            let line = line_of(self.text, raw.span().start);
+            self.notes.push(format!(
+                "{}:{line}: {label}: dropped {} degenerate (zero-area) triangles, kept {}",
+                self.origin,
+                imported.degenerate_dropped,
+                imported.mesh.triangles.len()
+            ));
+        }
+        Ok(Shape::Mesh(imported.mesh))
+    }
+
+    /// Rejects keys of `keys` that are not in `allowed` for a table of this kind.
+    fn only_keys(
+        &self,
+        label: &str,
+        kind: &str,
+        keys: &[(&'static str, Range<usize>)],
+        allowed: &[&str],
+    ) -> Result<(), SceneError> {
+        match keys.iter().find(|(k, _)| !allowed.contains(k)) {
+            Some((key, span)) => Err(self.invalid(
+                span.clone(),
+                format!(
+                    "{label}: key `{key}` does not apply to {kind} (it takes {})",
+                    if allowed.is_empty() {
+                        "only `frames`".to_owned()
+                    } else {
+                        allowed
+                            .iter()
+                            .map(|k| format!("`{k}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    }
+                ),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    fn required<'v, T, U>(
+        &self,
+        label: &str,
+        key: &str,
+        value: &'v Option<Spanned<T>>,
+        table: &Spanned<U>,
+    ) -> Result<&'v Spanned<T>, SceneError> {
+        value
+            .as_ref()
+            .ok_or_else(|| self.invalid(table.span(), format!("{label}: missing `{key}`")))
+    }
+
+    fn number(&self, label: &str, key: &str, v: &Spanned<f32>) -> Result<f32, SceneError> {
+        let x = *v.get_ref();
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.invalid(
+                v.span(),
+                format!("{label}: {key} must be a finite number, got {x}"),
+            ))
+        }
+    }
+
+    fn positive(&self, label: &str, key: &str, v: &Spanned<f32>) -> Result<f32, SceneError> {
+        let x = self.number(label, key, v)?;
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(
+                v.span(),
+                format!("{label}: {key} must be positive, got {x}"),
+            ))
+        }
+    }
+
+    fn non_negative(&self, label: &str, key: &str, v: &Spanned<f32>) -> Result<f32, SceneError> {
+        let x = self.number(label, key, v)?;
+        if x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(
+                v.span(),
+                format!("{label}: {key} must not be negative, got {x}"),
+            ))
+        }
+    }
+
+    fn vec3(&self, label: &str, key: &str, v: &Spanned<V3>) -> Result<Vec3, SceneError> {
+        let p = Vec3::from(*v.get_ref());
+        if p.is_finite() {
+            Ok(p)
+        } else {
+            Err(self.invalid(v.span(), format!("{label}: {key} must be finite, got {p}")))
+        }
+    }
+
+    fn nonzero(&self, label: &str, key: &str, v: &Spanned<V3>) -> Result<Vec3, SceneError> {
+        let p = self.vec3(label, key, v)?;
+        if p != Vec3::ZERO {
+            Ok(p)
+        } else {
+            Err(self.invalid(v.span(), format!("{label}: {key} must not be zero-length")))
+        }
+    }
+
+    /// A colour (or intensity): finite and not negative.
+    fn colour(&self, label: &str, key: &str, v: &Spanned<Triple>) -> Result<Vec3, SceneError> {
+        let c = Vec3::from(v.get_ref().0);
+        if !c.is_finite() {
+            return Err(self.invalid(v.span(), format!("{label}: {key} must be finite, got {c}")));
+        }
+        if c.min_element() < 0.0 {
+            return Err(self.invalid(
+                v.span(),
+                format!("{label}: {key} must not be negative, got {c}"),
+            ));
+        }
+        Ok(c)
+    }
+}
+
+/// `v` scaled to unit length, but returned unchanged when it is unit already (to within
+/// rounding), so that a direction written out by `scene_to_toml` reads back bit for bit.
+fn unit(v: Vec3) -> Vec3 {
+    if (v.length_squared() - 1.0).abs() <= 1e-6 {
+        v
+    } else {
+        v.normalize()
+    }
+}
+
+/// The camera the format means by `yaw_deg`/`pitch_deg` (see `Camera::yaw_pitch`), shared with
+/// the writer so that it can tell when yaw and pitch reproduce a camera exactly.
+pub(crate) fn yaw_pitch_deg_camera(
+    eye: Vec3,
+    yaw_deg: f32,
+    pitch_deg: f32,
+    up: Vec3,
+    vfov_deg: f32,
+) -> Camera {
+    Camera {
+        up,
+        ..Camera::yaw_pitch(eye, yaw_deg.to_radians(), pitch_deg.to_radians(), vfov_deg)
+    }
+}

@@ -1,0 +1,267 @@
+//! Mesh import: Wavefront OBJ files (positions and faces) turned into a world-space
+//! [`TriangleMesh`], and the checks every mesh goes through (also inline meshes written in a
+//! scene file): finite vertices, indices in range, degenerate triangles dropped, not empty.
+
+use crate::TriangleMesh;
+use glam::Vec3;
+use std::path::{Path, PathBuf};
+
+/// Placement of a mesh in the world: scale (per axis) first, then a rotation about +y, then
+/// a translation. The identity transform leaves positions bit-for-bit unchanged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshTransform {
+    pub translate: Vec3,
+    pub scale: Vec3,
+    /// Right-handed rotation about the +y axis, in degrees.
+    pub rotate_y_deg: f32,
+}
+
+impl Default for MeshTransform {
+    fn default() -> Self {
+        Self {
+            translate: Vec3::ZERO,
+            scale: Vec3::ONE,
+            rotate_y_deg: 0.0,
+        }
+    }
+}
+
+impl MeshTransform {
+    /// Whether this transform changes nothing (it is then not applied at all).
+    pub fn is_identity(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The world-space position of model-space point `p`.
+    pub fn apply(&self, p: Vec3) -> Vec3 {
+        let s = p * self.scale;
+        let (sin, cos) = self.rotate_y_deg.to_radians().sin_cos();
+        let r = Vec3::new(cos * s.x + sin * s.z, s.y, -sin * s.x + cos * s.z);
+        r + self.translate
+    }
+}
+
+/// A mesh ready for a scene, with what the import had to leave out.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImportedMesh {
+    pub mesh: TriangleMesh,
+    /// Triangles dropped because their area is zero (repeated or collinear corners).
+    pub degenerate_dropped: usize,
+}
+
+/// What is wrong with a mesh's data, wherever it came from.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshProblem {
+    #[error("vertex {vertex} is not finite: {position:?}")]
+    NonFinite { vertex: usize, position: [f32; 3] },
+    #[error("triangle {triangle} refers to vertex {index}, but there are only {vertices} vertices")]
+    IndexOutOfRange {
+        triangle: usize,
+        index: u32,
+        vertices: usize,
+    },
+    #[error("mesh has no triangles")]
+    Empty,
+    #[error("all {0} triangles are degenerate (zero area)")]
+    AllDegenerate(usize),
+}
+
+/// Why a mesh file could not be imported; every variant names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshImportError {
+    #[error("mesh file {}: cannot read: {source}", path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("mesh file {}: unsupported format (only .obj is supported)", path.display())]
+    Unsupported { path: PathBuf },
+    #[error("mesh file {}: malformed OBJ: {reason}", path.display())]
+    Obj {
+        path: PathBuf,
+        reason: tobj::LoadError,
+    },
+    #[error("mesh file {}: {problem}", path.display())]
+    Invalid { path: PathBuf, problem: MeshProblem },
+}
+
+/// Reads the mesh file at `path` (OBJ, chosen by the extension) and places it with
+/// `transform`.
+pub fn import_mesh(
+    path: &Path,
+    transform: &MeshTransform,
+) -> Result<ImportedMesh, MeshImportError> {
+    let is_obj = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    if !is_obj {
+        return Err(MeshImportError::Unsupported {
+            path: path.to_owned(),
+        });
+    }
+    let text = std::fs::read_to_string(path).map_err(|source| MeshImportError::Read {
+        path: path.to_owned(),
+        source,
+    })?;
+    let (positions, triangles) = parse_obj(&text).map_err(|reason| MeshImportError::Obj {
+        path: path.to_owned(),
+        reason,
+    })?;
+    build_mesh(positions, triangles, transform).map_err(|problem| MeshImportError::Invalid {
+        path: path.to_owned(),
+        problem,
+    })
+}
+
+/// Positions and triangles of OBJ text, all objects and groups merged, polygons fanned into
+/// triangles. Only `v` and `f` records are read (texture coordinates, normals and materials
+/// are not part of the scene model); this also keeps tobj away from their index arithmetic.
+fn parse_obj(text: &str) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), tobj::LoadError> {
+    let mut reduced = String::with_capacity(text.len());
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                reduced.push_str(line.trim());
+                reduced.push('\n');
+            }
+            Some("f") => {
+                reduced.push('f');
+                for w in words {
+                    reduced.push(' ');
+                    reduced.push_str(w.split('/').next().unwrap_or(w));
+                }
+                reduced.push('\n');
+            }
+            _ => {}
+        }
+    }
+    let (models, _) = tobj::load_obj_buf(&mut reduced.as_bytes(), &tobj::GPU_LOAD_OPTIONS, |_| {
+        Err(tobj::LoadError::GenericFailure)
+    })?;
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for model in models {
+        let base = positions.len() as u32;
+        let m = model.mesh;
+        positions.extend(
+            m.positions
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2])),
+        );
+        triangles.extend(
+            m.indices
+                .chunks_exact(3)
+                .map(|t| [base + t[0], base + t[1], base + t[2]]),
+        );
+    }
+    Ok((positions, triangles))
+}
+
+/// Checks and places raw mesh data: every vertex finite (before and after `transform`), every
+/// index in range; degenerate triangles are dropped and counted; a mesh with no triangle
+/// left is an error. With the identity transform the positions are kept bit for bit.
+pub fn build_mesh(
+    positions: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    transform: &MeshTransform,
+) -> Result<ImportedMesh, MeshProblem> {
+    let check_finite = |positions: &[Vec3]| match positions.iter().position(|p| !p.is_finite()) {
+        Some(vertex) => Err(MeshProblem::NonFinite {
+            vertex,
+            position: positions[vertex].to_array(),
+        }),
+        None => Ok(()),
+    };
+    check_finite(&positions)?;
+    let positions = if transform.is_identity() {
+        positions
+    } else {
+        let placed: Vec<Vec3> = positions.iter().map(|&p| transform.apply(p)).collect();
+        check_finite(&placed)?;
+        placed
+    };
+    if triangles.is_empty() {
+        return Err(MeshProblem::Empty);
+    }
+    let total = triangles.len();
+    let mut kept = Vec::with_capacity(total);
+    for (i, tri) in triangles.into_iter().enumerate() {
+        if let Some(&index) = tri.iter().find(|&&v| v as usize >= positions.len()) {
+            return Err(MeshProblem::IndexOutOfRange {
+                triangle: i,
+                index,
+                vertices: positions.len(),
+            });
+        }
+        let [a, b, c] = tri.map(|v| positions[v as usize]);
+        if (b - a).cross(c - a).length_squared() > 0.0 {
+            kept.push(tri);
+        }
+    }
+    if kept.is_empty() {
+        return Err(MeshProblem::AllDegenerate(total));
+    }
+    Ok(ImportedMesh {
+        degenerate_dropped: total - kept.len(),
+        mesh: TriangleMesh {
+            positions,
+            triangles: kept,
+        },
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn transform_order_is_scale_rotate_translate() {
+        let t = MeshTransform {
+            translate: Vec3::new(10.0, 0.0, 0.0),
+            scale: Vec3::splat(2.0),
+            rotate_y_deg: 90.0,
+        };
+        // (1,0,0) scaled to (2,0,0), rotated +90° about y to (0,0,-2), moved to (10,0,-2).
+        let p = t.apply(Vec3::X);
+        assert!((p - Vec3::new(10.0, 0.0, -2.0)).length() < 1e-5, "{p}");
+        assert!(MeshTransform::default().is_identity());
+        assert!(!t.is_identity());
+    }
+
+    #[test]
+    fn degenerate_triangles_are_dropped_and_counted() {
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(2.0, 0.0, 0.0)];
+        let tris = vec![[0, 1, 2], [0, 1, 3], [2, 2, 1]];
+        let m = build_mesh(positions, tris, &MeshTransform::default()).unwrap();
+        assert_eq!(m.mesh.triangles, vec![[0, 1, 2]]);
+        assert_eq!(m.degenerate_dropped, 2);
+    }
+
+    #[test]
+    fn bad_meshes_are_errors() {
+        let id = MeshTransform::default();
+        let e = build_mesh(vec![Vec3::ZERO], vec![[0, 0, 5]], &id).unwrap_err();
+        assert!(matches!(e, MeshProblem::IndexOutOfRange { index: 5, .. }));
+        let e = build_mesh(vec![Vec3::NAN], vec![[0, 0, 0]], &id).unwrap_err();
+        assert!(matches!(e, MeshProblem::NonFinite { vertex: 0, .. }));
+        assert_eq!(
+            build_mesh(vec![Vec3::ZERO], vec![], &id).unwrap_err(),
+            MeshProblem::Empty
+        );
+        assert_eq!(
+            build_mesh(vec![Vec3::ZERO], vec![[0, 0, 0]], &id).unwrap_err(),
+            MeshProblem::AllDegenerate(1)
+        );
+    }
+
+    #[test]
+    fn obj_faces_ignore_texture_and_normal_indices() {
+        let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n\
+                   f 1/1/1 2/1/1 3/1/1 4/1/1\n";
+        let (p, t) = parse_obj(obj).unwrap();
+        assert_eq!(p.len(), 4);
+        assert_eq!(t.len(), 2);
+    }
+}
