@@ -342,7 +342,8 @@ impl Cx<'_> {
             r.forward.as_ref().map(|f| ("forward", f.span())),
             r.yaw_deg.as_ref().map(|y| ("yaw_deg", y.span())),
         ];
-        let given: Vec<_> = given.into_iter().flatten().collect();
+        let mut given: Vec<_> = given.into_iter().flatten().collect();
+        given.sort_by_key(|g| g.1.start);
         if given.len() != 1 {
             let span = given.get(1).map_or(raw.span(), |g| g.1.clone());
             return Err(self.invalid(
