@@ -73,7 +73,7 @@ mod tests {
         assert!(checker_is_odd(&[0.6, 0.2], 0.5));
         assert!(checker_is_odd(&[-0.1, 0.2], 0.5));
         assert!(!checker_is_odd(&[-0.1, -0.2], 0.5));
-        assert!(checker_is_odd(&[-0.1, -0.2, 0.3], 0.5));
-        assert!(!checker_is_odd(&[-0.1, -0.2, 0.7], 0.5));
+        assert!(checker_is_odd(&[-0.1, -0.2, 0.6], 0.5));
+        assert!(!checker_is_odd(&[-0.1, -0.2, 1.1], 0.5));
     }
 }
