@@ -58,7 +58,12 @@ impl Camera {
     /// The ray frame for an image of `width` × `height` pixels.
     pub fn frame(&self, width: u32, height: u32) -> CameraFrame {
         let forward = self.forward.normalize();
-        let right = forward.cross(self.up).normalize();
+        // Looking straight along `up` leaves `right` undefined: fall back to another axis.
+        let right = forward
+            .cross(self.up)
+            .try_normalize()
+            .or_else(|| forward.cross(Vec3::Z).try_normalize())
+            .unwrap_or(Vec3::X);
         let true_up = right.cross(forward);
         let half_height = (self.vfov_deg.to_radians() * 0.5).tan();
         let aspect = width as f32 / height as f32;
