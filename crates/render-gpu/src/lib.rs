@@ -1,1 +1,19 @@
-//! GPU renderer.
+//! The GPU backend of steadyray: the Whitted integrator of `docs/shading.md` as wgpu compute
+//! shaders (WGSL in `src/shaders/`), one thread per pixel, with exact ray counts per
+//! workgroup summed as 64-bit totals and GPU timestamps for the frame time.
+//!
+//! [`list_adapters`] tells a caller whether a real GPU is present; [`GpuRenderer::new`]
+//! opens one (chosen by [`GpuOptions`]) and implements [`steadyray_render::Renderer`].
+
+mod adapter;
+mod buffers;
+mod device;
+mod error;
+pub mod layout;
+mod pipeline;
+mod renderer;
+mod scene_buffers;
+mod timing;
+
+pub use adapter::{AdapterSummary, DeviceKind, GpuOptions, list_adapters};
+pub use renderer::GpuRenderer;

@@ -1,0 +1,285 @@
+//! The GPU data layouts in one place: every struct the shaders read, `#[repr(C)]` and
+//! [`bytemuck::Pod`], mirrored field for field by the WGSL structs of `shaders/layout.wgsl`.
+//! The test `wgsl_layouts_match_rust` parses the WGSL with naga and compares each struct's
+//! size, member names and offsets, and the shared constants, with the Rust side.
+
+use bytemuck::{Pod, Zeroable};
+use steadyray_render::MAX_DEPTH;
+
+/// Workgroups are `WORKGROUP_SIZE` × `WORKGROUP_SIZE` threads, one thread per pixel.
+pub const WORKGROUP_SIZE: u32 = 8;
+/// Ray counters per workgroup at most: depths 0..=MAX_DEPTH, then shadow rays.
+pub const COUNTER_SLOTS: u32 = MAX_DEPTH + 2;
+/// Threads of the ray-count reduction workgroup.
+pub const REDUCE_SIZE: u32 = 256;
+
+/// [`GpuShape::kind`] of a sphere.
+pub const SHAPE_SPHERE: u32 = 0;
+/// [`GpuShape::kind`] of a quad.
+pub const SHAPE_QUAD: u32 = 1;
+/// [`GpuShape::kind`] of an infinite plane.
+pub const SHAPE_PLANE: u32 = 2;
+
+/// [`GpuMaterial::kind`] of a diffuse material.
+pub const MAT_DIFFUSE: u32 = 0;
+/// [`GpuMaterial::kind`] of a mirror.
+pub const MAT_MIRROR: u32 = 1;
+/// [`GpuMaterial::kind`] of a dielectric.
+pub const MAT_DIELECTRIC: u32 = 2;
+/// [`GpuMaterial::kind`] of an emitter.
+pub const MAT_EMISSIVE: u32 = 3;
+
+/// The per-frame uniform (WGSL `Frame`): camera frame, quality, scene-wide terms and the
+/// dispatch geometry.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuFrame {
+    pub eye: [f32; 3],
+    pub half_width: f32,
+    pub forward: [f32; 3],
+    pub half_height: f32,
+    pub right: [f32; 3],
+    /// S, fractional.
+    pub spp: f32,
+    pub true_up: [f32; 3],
+    pub ambient: f32,
+    pub background: [f32; 3],
+    /// R.
+    pub max_depth: u32,
+    pub width: u32,
+    pub height: u32,
+    pub shape_count: u32,
+    pub triangle_count: u32,
+    pub light_count: u32,
+    /// Workgroups along x.
+    pub groups_x: u32,
+    /// Counters per workgroup: R + 2 (depths 0..=R, then shadow rays).
+    pub counter_stride: u32,
+    /// Workgroups in the dispatch.
+    pub group_count: u32,
+}
+
+/// An analytic shape (WGSL `Shape`), with what its intersection test needs precomputed
+/// exactly as the CPU reference precomputes it:
+///
+/// - Sphere: `p0` centre, `s0` = r², `s1` = 1 / r.
+/// - Quad: `p0` corner, `p1` = normalize(w) with w = edge_u × edge_v, `p2` = (edge_v × w) / |w|²
+///   and `p3` = (w × edge_u) / |w|² (the dual vectors giving the edge coordinates a, b),
+///   `s0` = |edge_u|, `s1` = |edge_v|.
+/// - Plane: `p0` point, `p1` normal, `p2` and `p3` the checker axes a and b.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuShape {
+    pub p0: [f32; 3],
+    /// `SHAPE_*`.
+    pub kind: u32,
+    pub p1: [f32; 3],
+    /// Index into the material buffer.
+    pub material: u32,
+    pub p2: [f32; 3],
+    pub s0: f32,
+    pub p3: [f32; 3],
+    pub s1: f32,
+}
+
+/// A mesh triangle in world space (WGSL `Triangle`) with its normal
+/// normalize((v1 - v0) × (v2 - v0)).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangle {
+    pub v0: [f32; 3],
+    pub material: u32,
+    pub v1: [f32; 3],
+    pub pad0: u32,
+    pub v2: [f32; 3],
+    pub pad1: u32,
+    pub normal: [f32; 3],
+    pub pad2: u32,
+}
+
+/// A material (WGSL `Material`). `colour` is the albedo, reflectance, tint or radiance by
+/// kind; a diffuse checker has `checker_size > 0` and its odd squares' albedo in `colour_b`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub colour: [f32; 3],
+    /// `MAT_*`.
+    pub kind: u32,
+    pub colour_b: [f32; 3],
+    pub checker_size: f32,
+    /// Index of refraction (dielectrics).
+    pub ior: f32,
+    pub pad0: u32,
+    pub pad1: u32,
+    pub pad2: u32,
+}
+
+/// A point light (WGSL `Light`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    pub position: [f32; 3],
+    pub pad0: f32,
+    pub intensity: [f32; 3],
+    pub pad1: f32,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::mem::{offset_of, size_of};
+    use wgpu::naga;
+
+    /// A Rust struct's name, size and (member, offset) list, in declaration order.
+    macro_rules! rust_layout {
+        ($t:ident { $($field:ident),* $(,)? }) => {
+            (
+                size_of::<$t>(),
+                vec![$((stringify!($field), offset_of!($t, $field))),*],
+            )
+        };
+    }
+
+    fn wgsl_module() -> naga::Module {
+        naga::front::wgsl::parse_str(crate::pipeline::SHADER_SOURCE)
+            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(crate::pipeline::SHADER_SOURCE)))
+    }
+
+    fn wgsl_struct(module: &naga::Module, name: &str) -> (usize, Vec<(String, usize)>) {
+        let ty = module
+            .types
+            .iter()
+            .find(|(_, ty)| ty.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("WGSL struct {name} not found"))
+            .1;
+        match &ty.inner {
+            naga::TypeInner::Struct { members, span } => (
+                *span as usize,
+                members
+                    .iter()
+                    .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+                    .collect(),
+            ),
+            other => panic!("WGSL {name} is not a struct: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn wgsl_layouts_match_rust() {
+        let module = wgsl_module();
+        let rust = [
+            (
+                "Frame",
+                rust_layout!(GpuFrame {
+                    eye,
+                    half_width,
+                    forward,
+                    half_height,
+                    right,
+                    spp,
+                    true_up,
+                    ambient,
+                    background,
+                    max_depth,
+                    width,
+                    height,
+                    shape_count,
+                    triangle_count,
+                    light_count,
+                    groups_x,
+                    counter_stride,
+                    group_count,
+                }),
+            ),
+            (
+                "Shape",
+                rust_layout!(GpuShape {
+                    p0,
+                    kind,
+                    p1,
+                    material,
+                    p2,
+                    s0,
+                    p3,
+                    s1
+                }),
+            ),
+            (
+                "Triangle",
+                rust_layout!(GpuTriangle {
+                    v0,
+                    material,
+                    v1,
+                    pad0,
+                    v2,
+                    pad1,
+                    normal,
+                    pad2
+                }),
+            ),
+            (
+                "Material",
+                rust_layout!(GpuMaterial {
+                    colour,
+                    kind,
+                    colour_b,
+                    checker_size,
+                    ior,
+                    pad0,
+                    pad1,
+                    pad2
+                }),
+            ),
+            (
+                "Light",
+                rust_layout!(GpuLight {
+                    position,
+                    pad0,
+                    intensity,
+                    pad1
+                }),
+            ),
+        ];
+        for (name, (size, fields)) in rust {
+            let (wgsl_size, wgsl_fields) = wgsl_struct(&module, name);
+            let fields: Vec<(String, usize)> = fields
+                .into_iter()
+                .map(|(f, o)| (f.to_string(), o))
+                .collect();
+            assert_eq!(wgsl_fields, fields, "member offsets of {name}");
+            assert_eq!(wgsl_size, size, "size of {name}");
+        }
+    }
+
+    #[test]
+    fn wgsl_constants_match_rust() {
+        let module = wgsl_module();
+        let wgsl_u32 = |name: &str| -> u32 {
+            let (_, c) = module
+                .constants
+                .iter()
+                .find(|(_, c)| c.name.as_deref() == Some(name))
+                .unwrap_or_else(|| panic!("WGSL constant {name} not found"));
+            match module.global_expressions[c.init] {
+                naga::Expression::Literal(naga::Literal::U32(v)) => v,
+                ref other => panic!("WGSL constant {name} is not a u32 literal: {other:?}"),
+            }
+        };
+        let rust = [
+            ("WORKGROUP_SIZE", WORKGROUP_SIZE),
+            ("MAX_DEPTH", MAX_DEPTH),
+            ("COUNTER_SLOTS", COUNTER_SLOTS),
+            ("REDUCE_SIZE", REDUCE_SIZE),
+            ("SHAPE_SPHERE", SHAPE_SPHERE),
+            ("SHAPE_QUAD", SHAPE_QUAD),
+            ("SHAPE_PLANE", SHAPE_PLANE),
+            ("MAT_DIFFUSE", MAT_DIFFUSE),
+            ("MAT_MIRROR", MAT_MIRROR),
+            ("MAT_DIELECTRIC", MAT_DIELECTRIC),
+            ("MAT_EMISSIVE", MAT_EMISSIVE),
+        ];
+        for (name, value) in rust {
+            assert_eq!(wgsl_u32(name), value, "WGSL constant {name}");
+        }
+    }
+}

@@ -1,0 +1,124 @@
+//! The compute pipelines, built once per renderer: frame settings live in a uniform buffer,
+//! so neither a resize nor a quality change rebuilds them.
+
+use crate::error::scoped;
+use steadyray_render::RenderError;
+
+/// The whole WGSL module: layouts, sampling rules, geometry, integrator, count reduction
+/// and tone map.
+pub(crate) const SHADER_SOURCE: &str = concat!(
+    include_str!("shaders/layout.wgsl"),
+    include_str!("shaders/sampling.wgsl"),
+    include_str!("shaders/geometry.wgsl"),
+    include_str!("shaders/integrator.wgsl"),
+    include_str!("shaders/counts.wgsl"),
+    include_str!("shaders/tonemap.wgsl"),
+);
+
+/// Bindings of group 0, as declared in `shaders/layout.wgsl`.
+pub(crate) mod binding {
+    pub const FRAME: u32 = 0;
+    pub const SHAPES: u32 = 1;
+    pub const TRIANGLES: u32 = 2;
+    pub const MATERIALS: u32 = 3;
+    pub const LIGHTS: u32 = 4;
+    pub const IMAGE: u32 = 5;
+    pub const GROUP_COUNTS: u32 = 6;
+    pub const TOTALS: u32 = 7;
+    pub const SRGB8: u32 = 8;
+}
+
+/// The three entry points of [`SHADER_SOURCE`] over one bind group layout.
+pub(crate) struct Pipelines {
+    pub(crate) bind_group_layout: wgpu::BindGroupLayout,
+    /// Traces the image and counts rays per workgroup.
+    pub(crate) render: wgpu::ComputePipeline,
+    /// Sums the per-workgroup counts into 64-bit totals.
+    pub(crate) reduce_counts: wgpu::ComputePipeline,
+    /// Tone-maps the linear image into packed RGBA8.
+    pub(crate) tonemap: wgpu::ComputePipeline,
+}
+
+fn layout_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+impl Pipelines {
+    pub(crate) fn new(device: &wgpu::Device) -> Result<Self, RenderError> {
+        use binding::*;
+        let read = wgpu::BufferBindingType::Storage { read_only: true };
+        let write = wgpu::BufferBindingType::Storage { read_only: false };
+        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("steadyray bindings"),
+            entries: &[
+                layout_entry(FRAME, wgpu::BufferBindingType::Uniform),
+                layout_entry(SHAPES, read),
+                layout_entry(TRIANGLES, read),
+                layout_entry(MATERIALS, read),
+                layout_entry(LIGHTS, read),
+                layout_entry(IMAGE, write),
+                layout_entry(GROUP_COUNTS, write),
+                layout_entry(TOTALS, write),
+                layout_entry(SRGB8, write),
+            ],
+        });
+        let module = shader_module(device, SHADER_SOURCE)?;
+        let build = |entry| compute_pipeline(device, &bind_group_layout, &module, entry);
+        Ok(Self {
+            render: build("render")?,
+            reduce_counts: build("reduce_counts")?,
+            tonemap: build("tonemap")?,
+            bind_group_layout,
+        })
+    }
+}
+
+/// Compiles WGSL `source`; a parse or validation failure comes back with naga's message.
+pub(crate) fn shader_module(
+    device: &wgpu::Device,
+    source: &str,
+) -> Result<wgpu::ShaderModule, RenderError> {
+    scoped(device, "WGSL shader failed to compile", || {
+        device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("steadyray shaders"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        })
+    })
+}
+
+/// The compute pipeline of `entry_point` in `module` over `layout`.
+pub(crate) fn compute_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+) -> Result<wgpu::ComputePipeline, RenderError> {
+    scoped(
+        device,
+        &format!("cannot create the compute pipeline {entry_point:?}"),
+        || {
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(entry_point),
+                bind_group_layouts: &[Some(layout)],
+                immediate_size: 0,
+            });
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry_point),
+                layout: Some(&pipeline_layout),
+                module,
+                entry_point: Some(entry_point),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        },
+    )
+}

@@ -1,0 +1,447 @@
+//! [`GpuRenderer`]: the Whitted integrator of `docs/shading.md` as wgpu compute passes.
+
+use crate::adapter::GpuOptions;
+use crate::buffers::{FrameBuffers, TOTALS_BYTES};
+use crate::device::GpuContext;
+use crate::error::{gpu_error, scoped};
+use crate::layout::{GpuFrame, WORKGROUP_SIZE};
+use crate::pipeline::{Pipelines, binding};
+use crate::scene_buffers::{PackedScene, SceneBuffers};
+use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
+use std::time::Instant;
+use steadyray_render::{
+    BackendInfo, FrameStats, Image, RayCounts, RenderError, RenderSettings, Renderer, TimingSource,
+};
+use steadyray_scene::{Camera, Scene};
+
+/// What the shaders need of the loaded scene besides its buffers.
+struct LoadedScene {
+    shape_count: u32,
+    triangle_count: u32,
+    light_count: u32,
+    ambient: f32,
+    background: [f32; 3],
+}
+
+/// The GPU backend. It owns its device (create one per process) and keeps pipelines and
+/// buffers across frames and scenes: a new image size or quality only rewrites the frame
+/// uniform and, when the image grows, reallocates the frame buffers.
+///
+/// [`Renderer::render`] waits for the frame and reads back only the ray counts and
+/// timestamps; [`Renderer::read_image`] (linear) and [`GpuRenderer::read_srgb8`]
+/// (tone-mapped) read the image.
+pub struct GpuRenderer {
+    ctx: GpuContext,
+    pipelines: Pipelines,
+    timer: Option<GpuTimer>,
+    frame_uniform: wgpu::Buffer,
+    scene_buffers: SceneBuffers,
+    frame_buffers: FrameBuffers,
+    /// Refers to the buffers above; dropped whenever one of them is replaced.
+    bind_group: Option<wgpu::BindGroup>,
+    scene: Option<LoadedScene>,
+    /// Size of the last rendered frame.
+    last_frame: Option<(u32, u32)>,
+}
+
+impl GpuRenderer {
+    /// Opens the adapter `options` choose and builds the pipelines. Fails with
+    /// [`RenderError::Gpu`] ("no GPU adapter found (...)") when no adapter qualifies.
+    pub fn new(options: &GpuOptions) -> Result<Self, RenderError> {
+        let ctx = GpuContext::new(options)?;
+        let pipelines = Pipelines::new(&ctx.device)?;
+        let timer = ctx
+            .timestamps
+            .then(|| GpuTimer::new(&ctx.device, &ctx.queue))
+            .flatten();
+        let frame_uniform = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame uniform"),
+            size: size_of::<GpuFrame>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let scene_buffers = SceneBuffers::new(&ctx.device);
+        let frame_buffers = FrameBuffers::new(&ctx.device);
+        ctx.errors.check()?;
+        Ok(Self {
+            ctx,
+            pipelines,
+            timer,
+            frame_uniform,
+            scene_buffers,
+            frame_buffers,
+            bind_group: None,
+            scene: None,
+            last_frame: None,
+        })
+    }
+
+    /// Whether frame times come from GPU timestamps ([`TimingSource::GpuTimestamps`]).
+    pub fn has_timestamps(&self) -> bool {
+        self.timer.is_some()
+    }
+
+    /// The last frame tone-mapped on the GPU (`linear_to_srgb8` per channel) as RGBA bytes,
+    /// row-major, top row first: the same bytes as `read_image()?.to_srgb8_rgba()` up to
+    /// the GPU's `pow` rounding (at most one level, rarely).
+    pub fn read_srgb8(&mut self) -> Result<Vec<u8>, RenderError> {
+        let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
+        let size = u64::from(width) * u64::from(height) * 4;
+        let mut encoder = self.encoder("tonemap");
+        {
+            let bind_group = self.bind_group();
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("tonemap"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.pipelines.tonemap);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(
+                width.div_ceil(WORKGROUP_SIZE),
+                height.div_ceil(WORKGROUP_SIZE),
+                1,
+            );
+        }
+        self.read_back(encoder, Source::Srgb8, size)
+    }
+
+    fn encoder(&self, label: &str) -> wgpu::CommandEncoder {
+        self.ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) })
+    }
+
+    /// The bind group over the current buffers, rebuilt if one was replaced.
+    fn bind_group(&mut self) -> wgpu::BindGroup {
+        fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry {
+                binding,
+                resource: buffer.as_entire_binding(),
+            }
+        }
+        let bind_group = self.bind_group.get_or_insert_with(|| {
+            let (s, f) = (&self.scene_buffers, &self.frame_buffers);
+            self.ctx
+                .device
+                .create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("steadyray bindings"),
+                    layout: &self.pipelines.bind_group_layout,
+                    entries: &[
+                        entry(binding::FRAME, &self.frame_uniform),
+                        entry(binding::SHAPES, s.shapes.buffer()),
+                        entry(binding::TRIANGLES, s.triangles.buffer()),
+                        entry(binding::MATERIALS, s.materials.buffer()),
+                        entry(binding::LIGHTS, s.lights.buffer()),
+                        entry(binding::IMAGE, f.image.buffer()),
+                        entry(binding::GROUP_COUNTS, f.group_counts.buffer()),
+                        entry(binding::TOTALS, &f.totals),
+                        entry(binding::SRGB8, f.srgb8.buffer()),
+                    ],
+                })
+        });
+        bind_group.clone()
+    }
+
+    /// Appends a copy of the first `size` bytes of `source` to the readback buffer, submits,
+    /// waits and returns the bytes.
+    fn read_back(
+        &mut self,
+        mut encoder: wgpu::CommandEncoder,
+        source: Source,
+        size: u64,
+    ) -> Result<Vec<u8>, RenderError> {
+        let f = &mut self.frame_buffers;
+        f.image_readback.ensure(&self.ctx.device, size);
+        let from = match source {
+            Source::Linear => f.image.buffer(),
+            Source::Srgb8 => f.srgb8.buffer(),
+        };
+        encoder.copy_buffer_to_buffer(from, 0, f.image_readback.buffer(), 0, size);
+        let commands = scoped(&self.ctx.device, "cannot record the readback", || {
+            encoder.finish()
+        })?;
+        self.ctx.submit_and_wait(commands)?;
+        self.ctx.read_buffer(f.image_readback.buffer(), size)
+    }
+
+    /// Checks that a frame of `settings` fits the device's buffer and dispatch limits.
+    fn check_limits(&self, settings: &RenderSettings, counters: u64) -> Result<(), RenderError> {
+        let limits = self.ctx.device.limits();
+        let max = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        let image_bytes = settings.pixels() * 16;
+        if image_bytes > max || counters * 4 > max {
+            return Err(gpu_error(
+                "frame too large for this GPU",
+                format!(
+                    "{}x{} needs a {image_bytes}-byte image buffer; the device allows {max}",
+                    settings.width, settings.height
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Which image [`GpuRenderer::read_back`] copies.
+enum Source {
+    Linear,
+    Srgb8,
+}
+
+/// The 64-bit (low, high) totals in `bytes`.
+fn parse_totals(bytes: &[u8]) -> Vec<u64> {
+    bytes
+        .chunks_exact(8)
+        .map(|pair| {
+            let [low, high]: [u32; 2] = bytemuck::pod_read_unaligned(pair);
+            u64::from(low) | (u64::from(high) << 32)
+        })
+        .collect()
+}
+
+impl Renderer for GpuRenderer {
+    fn info(&self) -> BackendInfo {
+        let info = &self.ctx.info;
+        BackendInfo {
+            backend: "gpu".to_string(),
+            device: format!(
+                "{} ({}, {} {})",
+                info.name,
+                info.backend.to_str(),
+                info.driver,
+                info.driver_info
+            )
+            .replace(" )", ")"),
+        }
+    }
+
+    fn load_scene(&mut self, scene: &Scene) -> Result<(), RenderError> {
+        let packed = PackedScene::new(scene)?;
+        let count = |n: usize, what: &str| {
+            u32::try_from(n).map_err(|_| RenderError::Scene(format!("too many {what}: {n}")))
+        };
+        let loaded = LoadedScene {
+            shape_count: count(packed.shapes.len(), "shapes")?,
+            triangle_count: count(packed.triangles.len(), "triangles")?,
+            light_count: count(packed.lights.len(), "lights")?,
+            ambient: packed.ambient,
+            background: packed.background,
+        };
+        let device = &self.ctx.device;
+        let grew = scoped(device, "cannot upload the scene", || {
+            self.scene_buffers.upload(device, &self.ctx.queue, &packed)
+        })?;
+        if grew {
+            self.bind_group = None;
+        }
+        self.scene = Some(loaded);
+        Ok(())
+    }
+
+    fn render(
+        &mut self,
+        camera: &Camera,
+        settings: &RenderSettings,
+    ) -> Result<FrameStats, RenderError> {
+        settings.validate()?;
+        let scene = self.scene.as_ref().ok_or(RenderError::NoScene)?;
+        self.ctx.errors.check()?;
+        let wall_start = Instant::now();
+        let (width, height) = (settings.width, settings.height);
+        let groups_x = width.div_ceil(WORKGROUP_SIZE);
+        let groups_y = height.div_ceil(WORKGROUP_SIZE);
+        let group_count = groups_x * groups_y;
+        let counter_stride = settings.max_depth + 2;
+        let counters = u64::from(group_count) * u64::from(counter_stride);
+        self.check_limits(settings, counters)?;
+
+        let cam = camera.frame(width, height);
+        let frame = GpuFrame {
+            eye: cam.eye.to_array(),
+            half_width: cam.half_width,
+            forward: cam.forward.to_array(),
+            half_height: cam.half_height,
+            right: cam.right.to_array(),
+            spp: settings.spp,
+            true_up: cam.true_up.to_array(),
+            ambient: scene.ambient,
+            background: scene.background,
+            max_depth: settings.max_depth,
+            width,
+            height,
+            shape_count: scene.shape_count,
+            triangle_count: scene.triangle_count,
+            light_count: scene.light_count,
+            groups_x,
+            counter_stride,
+            group_count,
+        };
+        if self
+            .frame_buffers
+            .ensure(&self.ctx.device, settings.pixels(), counters)
+        {
+            self.bind_group = None;
+        }
+        self.ctx
+            .queue
+            .write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&frame));
+
+        let mut encoder = self.encoder("frame");
+        let bind_group = self.bind_group();
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render"),
+                timestamp_writes: self.timer.as_ref().map(GpuTimer::pass_writes),
+            });
+            pass.set_pipeline(&self.pipelines.render);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(groups_x, groups_y, 1);
+        }
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("reduce ray counts"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.pipelines.reduce_counts);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(counter_stride, 1, 1);
+        }
+        let f = &self.frame_buffers;
+        let totals_bytes = u64::from(counter_stride) * 8;
+        encoder.copy_buffer_to_buffer(&f.totals, 0, &f.stats_readback, 0, totals_bytes);
+        if let Some(timer) = &self.timer {
+            timer.resolve(&mut encoder, &f.stats_readback, TOTALS_BYTES);
+        }
+        let commands = scoped(&self.ctx.device, "cannot record the frame", || {
+            encoder.finish()
+        })?;
+        let gpu_start = Instant::now();
+        self.ctx.submit_and_wait(commands)?;
+        let submit_and_wait_ms = gpu_start.elapsed().as_secs_f64() * 1e3;
+        let stats = self
+            .ctx
+            .read_buffer(&f.stats_readback, TOTALS_BYTES + TIMESTAMP_BYTES)?;
+
+        let totals = parse_totals(&stats[..totals_bytes as usize]);
+        let depth = settings.max_depth as usize;
+        let rays = RayCounts {
+            per_depth: totals[..=depth].to_vec(),
+            shadow: totals[depth + 1],
+        };
+        let gpu_ms = self
+            .timer
+            .as_ref()
+            .and_then(|t| t.elapsed_ms(&stats[TOTALS_BYTES as usize..]));
+        let (render_ms, timing) = match gpu_ms {
+            Some(ms) => (ms, TimingSource::GpuTimestamps),
+            None => (submit_and_wait_ms, TimingSource::WallClock),
+        };
+        self.last_frame = Some((width, height));
+        Ok(FrameStats {
+            render_ms,
+            wall_ms: wall_start.elapsed().as_secs_f64() * 1e3,
+            timing,
+            samples: rays.per_depth[0],
+            rays,
+            width,
+            height,
+        })
+    }
+
+    fn read_image(&mut self) -> Result<Image, RenderError> {
+        let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
+        let size = u64::from(width) * u64::from(height) * 16;
+        let encoder = self.encoder("read image");
+        let bytes = self.read_back(encoder, Source::Linear, size)?;
+        let pixels = bytes
+            .chunks_exact(16)
+            .map(|texel| {
+                let [r, g, b, _]: [f32; 4] = bytemuck::pod_read_unaligned(texel);
+                [r, g, b]
+            })
+            .collect();
+        Ok(Image {
+            width,
+            height,
+            pixels,
+        })
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::pipeline::{compute_pipeline, shader_module};
+
+    /// A renderer on any adapter (software included), or None after a loud skip message;
+    /// panics instead when STEADYRAY_REQUIRE_GPU=1.
+    pub(crate) fn test_renderer() -> Option<GpuRenderer> {
+        let options = GpuOptions {
+            adapter_name: std::env::var("STEADYRAY_ADAPTER").ok(),
+            allow_software: true,
+        };
+        match GpuRenderer::new(&options) {
+            Ok(renderer) => Some(renderer),
+            Err(e) if std::env::var("STEADYRAY_REQUIRE_GPU").as_deref() == Ok("1") => {
+                panic!("STEADYRAY_REQUIRE_GPU=1 but no GPU renderer: {e}")
+            }
+            Err(e) => {
+                eprintln!("SKIPPED: no GPU adapter ({e})");
+                None
+            }
+        }
+    }
+
+    #[test]
+    fn broken_wgsl_surfaces_the_compiler_message() {
+        let Some(renderer) = test_renderer() else {
+            return;
+        };
+        let device = &renderer.ctx.device;
+        let err = shader_module(device, "@compute @workgroup_size(1) fn main( {")
+            .expect_err("a syntax error must not compile");
+        let message = err.to_string();
+        assert!(
+            message.contains("WGSL shader failed to compile"),
+            "{message}"
+        );
+        assert!(
+            message.contains("expected"),
+            "no parser message in: {message}"
+        );
+
+        // Parses, but fails validation: a type error.
+        let module = shader_module(
+            device,
+            "@compute @workgroup_size(1) fn main() { let x: u32 = 1.5; }",
+        );
+        let message = match module {
+            Err(e) => e.to_string(),
+            Ok(module) => compute_pipeline(
+                device,
+                &renderer.pipelines.bind_group_layout,
+                &module,
+                "main",
+            )
+            .expect_err("a type error must not build")
+            .to_string(),
+        };
+        assert!(
+            message.contains("main") || message.contains("u32"),
+            "{message}"
+        );
+        // Caught by the scopes: nothing left over for the device's uncaptured handler.
+        renderer.ctx.errors.check().unwrap();
+    }
+
+    #[test]
+    fn totals_are_64_bit() {
+        let bytes: Vec<u8> = bytemuck::cast_slice(&[7u32, 0, u32::MAX, 2]).to_vec();
+        assert_eq!(
+            parse_totals(&bytes),
+            vec![7, u64::from(u32::MAX) | (2 << 32)]
+        );
+    }
+}

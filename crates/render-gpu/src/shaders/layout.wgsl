@@ -1,0 +1,101 @@
+// GPU data layouts, mirrored field for field by the `#[repr(C)]` structs of `src/layout.rs`
+// (the test `layout::tests::wgsl_layouts_match_rust` checks sizes, offsets and constants).
+
+const WORKGROUP_SIZE: u32 = 8u;
+// The largest depth R (steadyray_render::MAX_DEPTH).
+const MAX_DEPTH: u32 = 64u;
+// Ray counters per workgroup: one per depth 0..=MAX_DEPTH, then shadow rays.
+const COUNTER_SLOTS: u32 = 66u;
+// Threads of the ray-count reduction.
+const REDUCE_SIZE: u32 = 256u;
+
+const SHAPE_SPHERE: u32 = 0u;
+const SHAPE_QUAD: u32 = 1u;
+const SHAPE_PLANE: u32 = 2u;
+
+const MAT_DIFFUSE: u32 = 0u;
+const MAT_MIRROR: u32 = 1u;
+const MAT_DIELECTRIC: u32 = 2u;
+const MAT_EMISSIVE: u32 = 3u;
+
+// Per-frame settings: camera frame, quality, scene-wide terms and dispatch geometry.
+struct Frame {
+    eye: vec3<f32>,
+    half_width: f32,
+    forward: vec3<f32>,
+    half_height: f32,
+    right: vec3<f32>,
+    spp: f32,
+    true_up: vec3<f32>,
+    ambient: f32,
+    background: vec3<f32>,
+    max_depth: u32,
+    width: u32,
+    height: u32,
+    shape_count: u32,
+    triangle_count: u32,
+    light_count: u32,
+    groups_x: u32,
+    counter_stride: u32,
+    group_count: u32,
+}
+
+// An analytic shape (see GpuShape in src/layout.rs). Sphere: p0 centre, s0 = r²,
+// s1 = 1 / r. Quad: p0 corner, p1 unit normal, p2 and p3 the dual edge vectors,
+// s0 = |edge_u|, s1 = |edge_v|. Plane: p0 point, p1 normal, p2 and p3 the checker axes.
+struct Shape {
+    p0: vec3<f32>,
+    kind: u32,
+    p1: vec3<f32>,
+    material: u32,
+    p2: vec3<f32>,
+    s0: f32,
+    p3: vec3<f32>,
+    s1: f32,
+}
+
+// A mesh triangle in world space with its normal normalize((v1 - v0) × (v2 - v0)).
+struct Triangle {
+    v0: vec3<f32>,
+    material: u32,
+    v1: vec3<f32>,
+    pad0: u32,
+    v2: vec3<f32>,
+    pad1: u32,
+    normal: vec3<f32>,
+    pad2: u32,
+}
+
+// colour: albedo, reflectance, tint or radiance by kind; colour_b and checker_size > 0 for a
+// diffuse checker; ior for dielectrics.
+struct Material {
+    colour: vec3<f32>,
+    kind: u32,
+    colour_b: vec3<f32>,
+    checker_size: f32,
+    ior: f32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+struct Light {
+    position: vec3<f32>,
+    pad0: f32,
+    intensity: vec3<f32>,
+    pad1: f32,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> shapes: array<Shape>;
+@group(0) @binding(2) var<storage, read> triangles: array<Triangle>;
+@group(0) @binding(3) var<storage, read> materials: array<Material>;
+@group(0) @binding(4) var<storage, read> lights: array<Light>;
+// Linear RGBA radiance, row-major, top row first.
+@group(0) @binding(5) var<storage, read_write> image: array<vec4<f32>>;
+// counter_stride counters per workgroup: rays at depth 0..=R, then shadow rays.
+@group(0) @binding(6) var<storage, read_write> group_counts: array<u32>;
+// The frame's totals per counter as 64-bit (low, high) pairs.
+@group(0) @binding(7) var<storage, read_write> totals: array<vec2<u32>>;
+// The tone-mapped image, one packed RGBA8 (R in the low byte) per pixel.
+@group(0) @binding(8) var<storage, read_write> srgb8: array<u32>;

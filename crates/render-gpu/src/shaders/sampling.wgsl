@@ -1,0 +1,62 @@
+// Mirrors steadyray_render::sampling bit for bit (integer hashing, exact float steps).
+
+fn pcg_hash(x: u32) -> u32 {
+    let state = x * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+fn unit_from_hash(h: u32) -> f32 {
+    return f32(h >> 8u) * (1.0 / 16777216.0);
+}
+
+fn branch_random(px: u32, py: u32, sample: u32, depth: u32) -> f32 {
+    var h = pcg_hash(px);
+    h = pcg_hash(h ^ py);
+    h = pcg_hash(h ^ sample);
+    h = pcg_hash(h ^ depth);
+    return unit_from_hash(h);
+}
+
+const R2_A: f32 = 0.7548777;
+const R2_B: f32 = 0.5698403;
+
+fn sample_offset(i: u32, n: u32) -> vec2<f32> {
+    if n <= 1u {
+        return vec2<f32>(0.5, 0.5);
+    }
+    let fi = f32(i);
+    let u = 0.5 + fi * R2_A;
+    let v = 0.5 + fi * R2_B;
+    return vec2<f32>(u - floor(u), v - floor(v));
+}
+
+var<private> BAYER8: array<u32, 64> = array<u32, 64>(
+    0u, 32u, 8u, 40u, 2u, 34u, 10u, 42u,
+    48u, 16u, 56u, 24u, 50u, 18u, 58u, 26u,
+    12u, 44u, 4u, 36u, 14u, 46u, 6u, 38u,
+    60u, 28u, 52u, 20u, 62u, 30u, 54u, 22u,
+    3u, 35u, 11u, 43u, 1u, 33u, 9u, 41u,
+    51u, 19u, 59u, 27u, 49u, 17u, 57u, 25u,
+    15u, 47u, 7u, 39u, 13u, 45u, 5u, 37u,
+    63u, 31u, 55u, 23u, 61u, 29u, 53u, 21u,
+);
+
+fn samples_for_pixel(px: u32, py: u32, spp: f32) -> u32 {
+    let whole = floor(spp);
+    let frac = spp - whole;
+    let threshold = (f32(BAYER8[(py & 7u) * 8u + (px & 7u)]) + 0.5) / 64.0;
+    return u32(whole) + select(0u, 1u, frac > threshold);
+}
+
+// glam's Vec3::normalize: v * (1 / sqrt(dot(v, v))), written out so both backends round alike.
+fn unit(v: vec3<f32>) -> vec3<f32> {
+    return v * (1.0 / sqrt(v.x * v.x + v.y * v.y + v.z * v.z));
+}
+
+// CameraFrame::ray_dir of spec/corridor.md.
+fn eye_ray_dir(px: u32, py: u32, uv: vec2<f32>) -> vec3<f32> {
+    let sx = (2.0 * (f32(px) + uv.x) / f32(frame.width) - 1.0) * frame.half_width;
+    let sy = (1.0 - 2.0 * (f32(py) + uv.y) / f32(frame.height)) * frame.half_height;
+    return unit(frame.forward + sx * frame.right + sy * frame.true_up);
+}

@@ -1,0 +1,335 @@
+//! The GPU renderer against the CPU reference: the same pictures (up to float rounding) and
+//! exactly the same ray counts, on the built-in scenes and on triangle meshes, at several
+//! (S, R).
+
+mod common;
+
+use common::{compare, gpu};
+use std::f32::consts::PI;
+use steadyray_render::{RenderSettings, Renderer};
+use steadyray_render_cpu::CpuRenderer;
+use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
+use steadyray_scene::{
+    Camera, CameraPath, Checker, Material, Object, PointLight, Scene, Shape, TriangleMesh, Vec3,
+    builtin,
+};
+
+/// Renders `scene` from `camera` on both backends at each (S, R) and checks parity;
+/// returns a line per setting for the log.
+fn check_parity(name: &str, scene: &Scene, camera: &Camera, size: (u32, u32), sr: &[(f32, u32)]) {
+    let Some(mut gpu) = gpu() else {
+        return;
+    };
+    let mut cpu = CpuRenderer::new();
+    gpu.load_scene(scene).unwrap();
+    cpu.load_scene(scene).unwrap();
+    for &(spp, max_depth) in sr {
+        let settings = RenderSettings {
+            width: size.0,
+            height: size.1,
+            spp,
+            max_depth,
+        };
+        let g = gpu.render(camera, &settings).unwrap();
+        let c = cpu.render(camera, &settings).unwrap();
+        let diff = compare(&gpu.read_image().unwrap(), &cpu.read_image().unwrap());
+        eprintln!(
+            "{name} {}x{} S={spp} R={max_depth}: max {} mean {:.4} over2 {} ({:.3}%); \
+             rays gpu {:?} shadow {} / cpu {:?} shadow {}; gpu {:.1} ms ({:?})",
+            size.0,
+            size.1,
+            diff.max,
+            diff.mean,
+            diff.pixels_over_2,
+            diff.fraction_over_2() * 100.0,
+            g.rays.per_depth,
+            g.rays.shadow,
+            c.rays.per_depth,
+            c.rays.shadow,
+            g.render_ms,
+            g.timing,
+        );
+        let what = format!("{name} S={spp} R={max_depth}");
+        diff.assert_parity(&what);
+        assert_eq!(g.rays, c.rays, "{what}: ray counts");
+        assert_eq!(g.samples, c.samples, "{what}: samples");
+    }
+}
+
+const SETTINGS: [(f32, u32); 4] = [(1.0, 0), (1.0, 3), (4.0, 8), (2.5, 4)];
+
+#[test]
+fn corridor_facing_the_mirrors() {
+    let scene = builtin("corridor").unwrap();
+    check_parity(
+        "corridor yaw 0",
+        &scene,
+        &scene.camera_at(0, 1),
+        (96, 64),
+        &SETTINGS,
+    );
+}
+
+#[test]
+fn corridor_other_views() {
+    let scene = builtin("corridor").unwrap();
+    // Behind the camera (the three diffuse spheres), then down at the glass sphere.
+    let behind = scene.camera_at(1, 2);
+    let glass = Camera::look_at(
+        Vec3::new(0.3, 1.2, -2.6),
+        Vec3::new(0.6, 0.45, -4.0),
+        Vec3::Y,
+        40.0,
+    );
+    check_parity(
+        "corridor yaw pi",
+        &scene,
+        &behind,
+        (96, 64),
+        &[(1.0, 2), (2.5, 5)],
+    );
+    check_parity(
+        "corridor glass",
+        &scene,
+        &glass,
+        (96, 64),
+        &[(1.0, 6), (4.0, 16)],
+    );
+}
+
+#[test]
+fn other_builtins() {
+    for name in ["cornell", "spheres"] {
+        let scene = builtin(name).unwrap();
+        check_parity(
+            name,
+            &scene,
+            &scene.camera_at(0, 8),
+            (96, 64),
+            &[(1.0, 4), (2.5, 6)],
+        );
+        check_parity(name, &scene, &scene.camera_at(3, 8), (96, 64), &[(1.0, 4)]);
+    }
+}
+
+/// An icosahedron subdivided once (80 triangles) around `center`, outward-facing.
+fn icosphere(center: Vec3, radius: f32) -> TriangleMesh {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let mut positions: Vec<Vec3> = [
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
+    .collect();
+    let faces: [[u32; 3]; 20] = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    let mut triangles = Vec::new();
+    let mut midpoint = |a: u32, b: u32, positions: &mut Vec<Vec3>| {
+        positions.push(((positions[a as usize] + positions[b as usize]) * 0.5).normalize());
+        positions.len() as u32 - 1
+    };
+    for [a, b, c] in faces {
+        let ab = midpoint(a, b, &mut positions);
+        let bc = midpoint(b, c, &mut positions);
+        let ca = midpoint(c, a, &mut positions);
+        triangles.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+    }
+    TriangleMesh {
+        positions: positions.iter().map(|&p| center + p * radius).collect(),
+        triangles,
+    }
+}
+
+/// A box mesh (12 triangles) from `lo` to `hi`.
+fn cuboid(lo: Vec3, hi: Vec3) -> TriangleMesh {
+    let corner = |i: u32| {
+        Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    };
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    TriangleMesh {
+        positions: (0..8).map(corner).collect(),
+        triangles: quads
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect(),
+    }
+}
+
+fn mesh_scene(extra: Vec<Object>) -> Scene {
+    let mut objects = vec![
+        Object {
+            name: "ground".into(),
+            shape: Shape::Plane {
+                point: Vec3::ZERO,
+                normal: Vec3::Y,
+            },
+            material: 0,
+        },
+        Object {
+            name: "glass ball".into(),
+            shape: Shape::Mesh(icosphere(Vec3::new(-0.6, 0.7, -4.0), 0.7)),
+            material: 1,
+        },
+        Object {
+            name: "block".into(),
+            shape: Shape::Mesh(cuboid(Vec3::new(0.4, 0.0, -5.0), Vec3::new(1.4, 1.2, -4.2))),
+            material: 2,
+        },
+        Object {
+            name: "lamp".into(),
+            shape: Shape::Sphere {
+                center: Vec3::new(1.8, 2.2, -6.0),
+                radius: 0.3,
+            },
+            material: 3,
+        },
+        Object {
+            name: "mirror".into(),
+            shape: Shape::Quad {
+                corner: Vec3::new(-3.0, 0.0, -7.0),
+                edge_u: Vec3::new(5.0, 0.0, -1.0),
+                edge_v: Vec3::new(0.0, 3.0, 0.0),
+            },
+            material: 4,
+        },
+    ];
+    objects.extend(extra);
+    Scene {
+        name: "meshes".into(),
+        materials: vec![
+            (
+                "ground".into(),
+                Material::Diffuse {
+                    albedo: Vec3::splat(0.75),
+                    checker: Some(Checker {
+                        size: 0.5,
+                        albedo_b: Vec3::splat(0.2),
+                    }),
+                },
+            ),
+            (
+                "glass".into(),
+                Material::Dielectric {
+                    ior: 1.5,
+                    tint: Vec3::new(0.9, 1.0, 0.95),
+                },
+            ),
+            (
+                "block".into(),
+                Material::Diffuse {
+                    albedo: Vec3::new(0.2, 0.5, 0.8),
+                    checker: Some(Checker {
+                        size: 0.25,
+                        albedo_b: Vec3::new(0.8, 0.5, 0.2),
+                    }),
+                },
+            ),
+            (
+                "lamp".into(),
+                Material::Emissive {
+                    radiance: Vec3::new(4.0, 3.5, 3.0),
+                },
+            ),
+            (
+                "mirror".into(),
+                Material::Mirror {
+                    reflectance: Vec3::new(0.9, 0.9, 0.85),
+                },
+            ),
+        ],
+        objects,
+        lights: vec![
+            PointLight {
+                position: Vec3::new(-1.0, 3.0, -2.0),
+                intensity: Vec3::splat(6.0),
+            },
+            PointLight {
+                position: Vec3::new(2.0, 2.5, -3.0),
+                intensity: Vec3::new(3.0, 2.5, 2.0),
+            },
+        ],
+        ambient: 0.05,
+        background: Vec3::new(0.05, 0.07, 0.12),
+        camera: Camera::look_at(
+            Vec3::new(0.0, 1.4, 0.0),
+            Vec3::new(0.0, 0.6, -4.5),
+            Vec3::Y,
+            55.0,
+        ),
+        path: CameraPath::Sweep { frames: 1 },
+    }
+}
+
+#[test]
+fn triangle_meshes() {
+    let scene = mesh_scene(Vec::new());
+    check_parity("meshes", &scene, &scene.camera, (96, 64), &SETTINGS);
+    let side = Camera::yaw_pitch(Vec3::new(1.5, 1.0, -1.5), PI / 8.0, -0.2, 60.0);
+    check_parity("meshes side", &scene, &side, (96, 64), &[(1.0, 6)]);
+}
+
+#[test]
+fn teapot() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/meshes/teapot.obj"
+    );
+    if !std::path::Path::new(path).exists() {
+        eprintln!("SKIPPED: {path} not found");
+        return;
+    }
+    let transform = MeshTransform {
+        translate: Vec3::new(0.3, 0.0, -4.5),
+        scale: Vec3::splat(0.5),
+        rotate_y_deg: 30.0,
+    };
+    let teapot = import_mesh(path.as_ref(), &transform).unwrap().mesh;
+    let scene = mesh_scene(vec![Object {
+        name: "teapot".into(),
+        shape: Shape::Mesh(teapot),
+        material: 4,
+    }]);
+    check_parity("teapot", &scene, &scene.camera, (64, 48), &[(1.0, 2)]);
+}
