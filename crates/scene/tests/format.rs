@@ -147,3 +147,16 @@ radius = 0.123456789
     assert_eq!(s, again);
     assert_eq!(format!("{s:?}"), format!("{again:?}"));
 }
+
+#[test]
+fn the_documented_example_parses() {
+    let doc = include_str!("../../../docs/scene-format.md");
+    let start = doc.find("```toml\n").unwrap() + "```toml\n".len();
+    let end = start + doc[start..].find("```").unwrap();
+    let example = doc[start..end].replace("meshes/teapot.obj", "teapot.obj");
+    let meshes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes");
+    let s = parse_scene(&example, "example.toml", Some(&meshes)).unwrap();
+    assert_eq!(s.name, "example");
+    assert_eq!(s.objects.len(), 4);
+    assert!(matches!(&s.objects[3].shape, Shape::Mesh(m) if m.triangles.len() == 6320));
+}
