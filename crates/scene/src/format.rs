@@ -384,13 +384,7 @@ impl Cx<'_> {
                 .map_or(Ok(0.0), |p| self.number(label, "pitch_deg", p))?;
             yaw_pitch_deg_camera(eye, yaw, pitch, up, vfov_deg)
         };
-        let f = camera.forward;
-        if f.cross(up).length() <= 1e-6 * f.length() * up.length() {
-            return Err(self.invalid(
-                raw.span(),
-                format!("camera: view direction {f} is parallel to up {up}"),
-            ));
-        }
+        // A view along `up` is allowed: `Camera::frame` picks another `right` axis for it.
         Ok(camera)
     }
 
