@@ -1,1 +1,83 @@
-//! Frame-time controllers.
+//! Frame-time controllers for real-time rendering, after Ishii and Shida's constant frame rate
+//! control for real-time ray tracing, with a simulated renderer to test them and the
+//! benchmark's metrics.
+//!
+//! The controller sees numbers only (frame time Tp, rays traced per depth, pixels, the quality
+//! used) and returns the next frame's [`Quality`]: S (eye rays per pixel, fractional allowed),
+//! R (reflection/refraction depth) and the resolution scale. It knows nothing about rendering.
+//!
+//! ```
+//! use steadyray_control::{Band, Bounds, Controller, Setup, from_name, simulate, metrics};
+//!
+//! let bounds = Bounds::default();
+//! let setup = Setup::new(Band::new(15.0, 20.0)?, bounds, bounds.max_quality())?;
+//! let mut c = from_name("predictive", setup, "")?;
+//! let model = simulate::RendererModel::corridor(720);
+//! let records = simulate::run(c.as_mut(), &model, 720);
+//! let s = metrics::summarize(&records[20..], setup.band, bounds.max_quality(), None);
+//! assert!(s.in_band_pct > 95.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Controllers ([`from_name`] builds one by name, with `key=value` options)
+//!
+//! - `fixed` ([`Fixed`]): no control; the starting quality every frame. No options.
+//! - `step` ([`Step`]): the paper's rule. Tp > Tmax: one step down; Tp < Tmin: one step up;
+//!   in the band: nothing. `knob=depth` (default) | `spp` | `both` (cuts S first down to its
+//!   minimum, then R; raises R first up to its maximum, then S). Steps are ±1 on whole
+//!   numbers, which reproduces the paper's oscillation across a narrow band.
+//! - `hysteresis` ([`Hysteresis`]): cut fast, raise slowly, as games' dynamic resolution
+//!   does. Cuts at once when Tp > Tmax (proportionally to the overshoot: nominal work ×
+//!   target/Tp), or after `cut_after`=1 frame above Tmin + `cut_above`=0.75 of the band;
+//!   raises after `up_after`=3 frames below Tmin + `raise_below`=0.3 of the band, by at most
+//!   `max_up`=30 % of nominal work; `min_interval`=3 frames between changes (overloads
+//!   excepted); a frame over Tmax and `hitch_ratio`=3 times the previous one is held unless
+//!   the next frame confirms it. `target`=0.5 (the band's centre); `order`=depth,spp,scale.
+//! - `predictive` ([`Predictive`]): fits Tp ≈ fixed_ms + ms_per_ray · rays online
+//!   ([`cost_model`]: exponential forgetting `forgetting`=0.95, outliers beyond
+//!   `outlier_k`=4 robust deviations set aside, `confirm`=2 outliers on one side confirm a
+//!   real cost change), predicts each candidate's rays from the last frame's rays per depth
+//!   ([`ray_model`]), extrapolates the load's trend (`trend`=0.5), and keeps the quality while
+//!   the prediction lies inside the inner band (`deadband`=0.2 of the band from each side,
+//!   narrowed so that 2 measured noise deviations stay inside the band);
+//!   otherwise it takes the highest quality predicted to fit the target (`target`=0.5),
+//!   raising at most `max_raise`=2× the rays per change. Raising order (`order`): R while
+//!   at least `min_reach`=2 % of eye rays reach the deeper level, then S, then scale, then
+//!   the remaining R; cuts in reverse.
+//!
+//! # Refused reports
+//!
+//! A report whose Tp is NaN, infinite, zero, negative or over [`MAX_FRAME_MS`] (one minute)
+//! is refused by every controller: `observe` returns a [`ReportError`] and nothing changes
+//! (quality, history and models), so one bad timer reading never poisons a run. `predictive`
+//! also refuses reports without pixels or eye rays ([`ReportError::NoRays`]).
+//!
+//! # Testing without a GPU
+//!
+//! [`simulate`] is a renderer on a fake clock (cost model, corridor-shaped load, noise,
+//! spikes, a 1 ms timer); [`metrics`] computes the benchmark's figures from any run.
+
+pub mod band;
+pub mod controller;
+pub mod cost_model;
+pub mod error;
+pub mod fixed;
+pub mod hysteresis;
+pub mod metrics;
+pub mod predictive;
+pub mod quality;
+pub mod ray_model;
+pub mod report;
+pub mod simulate;
+pub mod step;
+
+pub use band::{Band, Position};
+pub use controller::{CONTROLLER_NAMES, Controller, Setup, from_name, parse_options};
+pub use error::ConfigError;
+pub use fixed::Fixed;
+pub use hysteresis::{Hysteresis, HysteresisParams};
+pub use metrics::{FrameRecord, RunSummary, best_fixed, summarize};
+pub use predictive::{Predictive, PredictiveParams};
+pub use quality::{Bounds, Knob, KnobOrder, Quality};
+pub use report::{FrameReport, MAX_FRAME_MS, ReportError};
+pub use step::{Step, StepKnob, StepParams};

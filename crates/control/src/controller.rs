@@ -1,0 +1,172 @@
+//! The controller interface and the constructor that builds one by name.
+
+use crate::band::Band;
+use crate::error::ConfigError;
+use crate::fixed::Fixed;
+use crate::hysteresis::{Hysteresis, HysteresisParams};
+use crate::predictive::{Predictive, PredictiveParams};
+use crate::quality::{Bounds, Quality};
+use crate::report::{FrameReport, ReportError};
+use crate::step::{Step, StepParams};
+use std::fmt;
+use std::str::FromStr;
+
+/// A frame-time controller: it sees each frame's report and decides the next frame's quality.
+///
+/// The loop: `q = c.quality()`, render with `q`, then `c.observe(&report)` (which returns the
+/// next quality, the same value `c.quality()` gives afterwards).
+pub trait Controller: Send + fmt::Debug {
+    /// The controller's name: `fixed`, `step`, `hysteresis` or `predictive`.
+    fn name(&self) -> &'static str;
+
+    /// The quality to render the next frame with. Always inside the controller's bounds.
+    fn quality(&self) -> Quality;
+
+    /// Takes the report of the frame just rendered and returns the next frame's quality.
+    ///
+    /// A report with a NaN, infinite, zero, negative or absurd (> [`crate::MAX_FRAME_MS`]) Tp
+    /// is refused with an error and changes nothing: quality, history and model stay as they
+    /// were, so the run continues exactly as if the frame had not been reported.
+    fn observe(&mut self, report: &FrameReport) -> Result<Quality, ReportError>;
+
+    /// Back to the starting quality with an empty history (e.g. between benchmark runs).
+    fn reset(&mut self);
+}
+
+/// What every controller needs: the band, the knobs' bounds and the starting quality.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Setup {
+    pub band: Band,
+    pub bounds: Bounds,
+    pub start: Quality,
+}
+
+impl Setup {
+    /// A checked setup: valid bounds and a start inside them.
+    pub fn new(band: Band, bounds: Bounds, start: Quality) -> Result<Self, ConfigError> {
+        let setup = Self {
+            band,
+            bounds,
+            start,
+        };
+        setup.validate()?;
+        Ok(setup)
+    }
+
+    /// Checks the bounds and that the start lies inside them.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        self.bounds.validate()?;
+        if !self.bounds.contains(&self.start) {
+            return Err(ConfigError::StartOutOfBounds {
+                quality: self.start.to_string(),
+                bounds: self.bounds.to_string(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The names [`from_name`] accepts.
+pub const CONTROLLER_NAMES: [&str; 4] = ["fixed", "step", "hysteresis", "predictive"];
+
+/// Builds a controller by name (`fixed`, `step`, `hysteresis`, `predictive`) with options
+/// written `key=value`, separated by spaces or `;` (e.g. `"knob=depth"`,
+/// `"up_after=10; order=depth,spp"`). An empty string gives the defaults. Unknown names,
+/// unknown keys, unparsable values and bad setups are errors that say what is accepted.
+pub fn from_name(
+    name: &str,
+    setup: Setup,
+    options: &str,
+) -> Result<Box<dyn Controller>, ConfigError> {
+    let options = parse_options(options)?;
+    let name = name.trim();
+    let check_none = |controller: &'static str| match options.first() {
+        Some((key, _)) => Err(ConfigError::UnknownOption {
+            controller,
+            key: key.clone(),
+            expected: "no options",
+        }),
+        None => Ok(()),
+    };
+    Ok(match name {
+        "fixed" => {
+            check_none("fixed")?;
+            Box::new(Fixed::new(setup)?)
+        }
+        "step" => {
+            let mut p = StepParams::default();
+            for (k, v) in &options {
+                p.set(k, v)?;
+            }
+            Box::new(Step::new(setup, p)?)
+        }
+        "hysteresis" => {
+            let mut p = HysteresisParams::default();
+            for (k, v) in &options {
+                p.set(k, v)?;
+            }
+            Box::new(Hysteresis::new(setup, p)?)
+        }
+        "predictive" => {
+            let mut p = PredictiveParams::default();
+            for (k, v) in &options {
+                p.set(k, v)?;
+            }
+            Box::new(Predictive::new(setup, p)?)
+        }
+        other => return Err(ConfigError::UnknownController(other.to_string())),
+    })
+}
+
+/// Splits `key=value` items separated by whitespace or `;`.
+pub fn parse_options(text: &str) -> Result<Vec<(String, String)>, ConfigError> {
+    text.split(|c: char| c == ';' || c.is_whitespace())
+        .filter(|item| !item.is_empty())
+        .map(|item| match item.split_once('=') {
+            Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
+            _ => Err(ConfigError::BadOption {
+                key: item.to_string(),
+                value: String::new(),
+                why: "options are written key=value".into(),
+            }),
+        })
+        .collect()
+}
+
+/// Parses one option value and checks it with `ok`, whose message says what is accepted.
+pub(crate) fn parse_option<T: FromStr>(
+    key: &str,
+    value: &str,
+    ok: impl Fn(&T) -> Result<(), String>,
+) -> Result<T, ConfigError>
+where
+    T::Err: fmt::Display,
+{
+    let bad = |why: String| ConfigError::BadOption {
+        key: key.to_string(),
+        value: value.to_string(),
+        why,
+    };
+    let parsed = value.trim().parse::<T>().map_err(|e| bad(e.to_string()))?;
+    ok(&parsed).map_err(bad)?;
+    Ok(parsed)
+}
+
+/// A range check for [`parse_option`]: `lo <= v <= hi`.
+pub(crate) fn within<T: PartialOrd + fmt::Display + Copy>(
+    lo: T,
+    hi: T,
+) -> impl Fn(&T) -> Result<(), String> {
+    move |v| {
+        if *v >= lo && *v <= hi {
+            Ok(())
+        } else {
+            Err(format!("must lie in [{lo}, {hi}]"))
+        }
+    }
+}
+
+/// The check shared by all controllers' `observe`: refuses bad times before anything changes.
+pub(crate) fn accept_time(report: &FrameReport) -> Result<f64, ReportError> {
+    report.check_time().map(|()| report.tp_ms)
+}

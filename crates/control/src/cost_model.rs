@@ -1,0 +1,244 @@
+//! The online cost model Tp ≈ fixed_ms + ms_per_ray · rays, fitted from recent frames.
+//!
+//! A weighted least-squares line with exponential forgetting (old frames fade with factor
+//! `forgetting` per frame) and a weak prior pulling the intercept toward 0, so the fit stays
+//! defined when every recent frame traced about the same number of rays (the slope is then
+//! Tp / rays). Robust to one-frame spikes: a frame whose residual exceeds `outlier_k` robust
+//! standard deviations (1.4826 · MAD of recent relative residuals, floored) is not fitted.
+//! If `confirm` outliers in a row lie on the same side, the cost really changed (a heavier
+//! scene, another machine state): old frames are then forgotten and the model restarts from
+//! the confirming ones.
+
+use std::collections::VecDeque;
+
+/// How many recent relative residuals the robust scale looks at.
+const RESIDUAL_WINDOW: usize = 32;
+
+/// Parameters of [`CostModel`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CostParams {
+    /// Weight decay per frame, in (0, 1]: 0.95 remembers about the last 20 frames.
+    pub forgetting: f64,
+    /// Outlier threshold in robust standard deviations. Default 4.
+    pub outlier_k: f64,
+    /// Floor of the relative standard deviation (timer and scheduling noise). Default 0.03.
+    pub min_sigma: f64,
+    /// Floor of the absolute standard deviation, ms (timer resolution). Default 0.25.
+    pub min_sigma_ms: f64,
+    /// Outliers in a row, all on one side, that confirm a real change of cost. Default 2.
+    pub confirm: u32,
+    /// Weight of the prior "fixed_ms = 0", in frames. It decides the split between fixed and
+    /// per-ray cost only when recent ray counts vary by less than about √(weight / frames
+    /// remembered), ≈ 5 % with the defaults. Default 0.05.
+    pub prior_weight: f64,
+}
+
+impl Default for CostParams {
+    fn default() -> Self {
+        Self {
+            forgetting: 0.95,
+            outlier_k: 4.0,
+            min_sigma: 0.03,
+            min_sigma_ms: 0.25,
+            confirm: 2,
+            prior_weight: 0.05,
+        }
+    }
+}
+
+/// What the model did with a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fit {
+    /// The frame agreed with the model and was fitted.
+    Accepted,
+    /// The frame disagreed too much and was set aside (a hitch, or the first frame of a
+    /// change not yet confirmed).
+    Outlier,
+    /// Enough outliers in a row confirmed a change of cost; the model was refitted to them.
+    Shifted,
+}
+
+/// Tp ≈ fixed_ms + ms_per_ray · rays, fitted online (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct CostModel {
+    params: CostParams,
+    /// Weighted sums over frames of 1, x, y, x², xy, with x in millions of rays, y in ms.
+    sums: [f64; 5],
+    fixed_ms: f64,
+    ms_per_mray: f64,
+    fitted: bool,
+    residuals: VecDeque<f64>,
+    pending: Vec<(f64, f64)>,
+}
+
+impl CostModel {
+    /// An empty model: it predicts nothing until it has seen a frame.
+    pub fn new(params: CostParams) -> Self {
+        Self {
+            params,
+            sums: [0.0; 5],
+            fixed_ms: 0.0,
+            ms_per_mray: 0.0,
+            fitted: false,
+            residuals: VecDeque::with_capacity(RESIDUAL_WINDOW),
+            pending: Vec::new(),
+        }
+    }
+
+    /// The fitted fixed cost per frame, ms.
+    pub fn fixed_ms(&self) -> f64 {
+        self.fixed_ms
+    }
+
+    /// The fitted cost per ray, ms.
+    pub fn ms_per_ray(&self) -> f64 {
+        self.ms_per_mray * 1e-6
+    }
+
+    /// The predicted frame time for `rays` rays, ms; `None` before the first frame.
+    pub fn predict_ms(&self, rays: f64) -> Option<f64> {
+        self.fitted
+            .then(|| self.fixed_ms + self.ms_per_mray * rays * 1e-6)
+    }
+
+    /// The robust relative standard deviation of recent residuals (floored at `min_sigma`).
+    pub fn sigma(&self) -> f64 {
+        let mut r: Vec<f64> = self.residuals.iter().copied().collect();
+        let med = median(&mut r);
+        let mut dev: Vec<f64> = r.iter().map(|v| (v - med).abs()).collect();
+        (1.4826 * median(&mut dev)).max(self.params.min_sigma)
+    }
+
+    /// Takes one frame: `rays` traced in `tp_ms` (both already checked finite and positive).
+    pub fn observe(&mut self, rays: f64, tp_ms: f64) -> Fit {
+        let x = rays * 1e-6;
+        let Some(pred) = self.predict_ms(rays).filter(|p| *p > 0.0) else {
+            self.add(x, tp_ms);
+            return Fit::Accepted;
+        };
+        let rel = (tp_ms - pred) / pred;
+        let limit = self.params.outlier_k * self.sigma().max(self.params.min_sigma_ms / pred);
+        if rel.abs() <= limit {
+            self.pending.clear();
+            if self.residuals.len() == RESIDUAL_WINDOW {
+                self.residuals.pop_front();
+            }
+            self.residuals.push_back(rel);
+            self.add(x, tp_ms);
+            return Fit::Accepted;
+        }
+        let same_side = self
+            .pending
+            .first()
+            .is_none_or(|&(px, py)| (py > self.raw_predict(px)) == (rel > 0.0));
+        if !same_side {
+            self.pending.clear();
+        }
+        self.pending.push((x, tp_ms));
+        if self.pending.len() < self.params.confirm as usize {
+            return Fit::Outlier;
+        }
+        self.sums = [0.0; 5];
+        for (px, py) in std::mem::take(&mut self.pending) {
+            self.add(px, py);
+        }
+        self.residuals.clear();
+        Fit::Shifted
+    }
+
+    fn raw_predict(&self, x: f64) -> f64 {
+        self.fixed_ms + self.ms_per_mray * x
+    }
+
+    /// Forgets a little, adds (x, y) and refits.
+    fn add(&mut self, x: f64, y: f64) {
+        let lambda = self.params.forgetting;
+        for s in &mut self.sums {
+            *s *= lambda;
+        }
+        for (s, v) in self.sums.iter_mut().zip([1.0, x, y, x * x, x * y]) {
+            *s += v;
+        }
+        self.refit();
+    }
+
+    /// Solves the 2×2 normal equations with the intercept prior; falls back to a line through
+    /// the origin and the weighted mean if the fit is not physical (a non-positive slope, or a
+    /// fixed cost below 0 or above 90 % of the mean frame time).
+    fn refit(&mut self) {
+        let [w, sx, sy, sxx, sxy] = self.sums;
+        let mu = self.params.prior_weight;
+        let det = (w + mu) * sxx - sx * sx;
+        let (mut a, mut b) = if det > 1e-12 * (w + mu) * sxx.max(1e-300) {
+            (
+                (sy * sxx - sx * sxy) / det,
+                ((w + mu) * sxy - sx * sy) / det,
+            )
+        } else {
+            (0.0, 0.0)
+        };
+        let mean_y = if w > 0.0 { sy / w } else { 0.0 };
+        if !(a >= 0.0 && a <= 0.9 * mean_y && b > 0.0 && b.is_finite()) {
+            a = 0.0;
+            b = if sx > 0.0 { sy / sx } else { 0.0 };
+        }
+        self.fixed_ms = a;
+        self.ms_per_mray = b;
+        self.fitted = b > 0.0;
+    }
+}
+
+/// The median of `v` (sorted in place); 0 when empty.
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn recovers_a_line_from_varied_frames() {
+        let mut m = CostModel::new(CostParams::default());
+        for i in 0..60 {
+            let rays = 20e6 + 5e6 * f64::from(i % 7);
+            m.observe(rays, 2.0 + 0.5e-6 * rays);
+        }
+        assert!((m.fixed_ms() - 2.0).abs() < 0.2, "fixed {}", m.fixed_ms());
+        assert!((m.ms_per_ray() / 0.5e-6 - 1.0).abs() < 0.02);
+    }
+
+    #[test]
+    fn a_single_spike_is_not_fitted_but_a_lasting_change_is() {
+        let mut m = CostModel::new(CostParams::default());
+        for _ in 0..20 {
+            assert_eq!(m.observe(30e6, 16.0), Fit::Accepted);
+        }
+        let before = m.predict_ms(30e6).unwrap();
+        assert_eq!(m.observe(30e6, 160.0), Fit::Outlier);
+        assert_eq!(m.observe(30e6, 16.1), Fit::Accepted);
+        assert!((m.predict_ms(30e6).unwrap() - before).abs() < 0.1);
+        assert_eq!(m.observe(30e6, 32.0), Fit::Outlier);
+        assert_eq!(m.observe(30e6, 32.0), Fit::Shifted);
+        assert!((m.predict_ms(30e6).unwrap() - 32.0).abs() < 1.0);
+    }
+
+    #[test]
+    fn constant_rays_give_a_proportional_model() {
+        let mut m = CostModel::new(CostParams::default());
+        for _ in 0..10 {
+            m.observe(10e6, 10.0);
+        }
+        assert!((m.predict_ms(10e6).unwrap() - 10.0).abs() < 1e-9);
+        assert!(m.predict_ms(20e6).unwrap() > 19.0);
+    }
+}

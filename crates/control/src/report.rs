@@ -1,0 +1,122 @@
+//! What a rendered frame tells the controller, and which reports are refused.
+
+use crate::quality::Quality;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// The longest frame time a report may claim, ms (one minute). Longer times are refused as
+/// absurd: a broken timer or a suspended process, not information about the renderer.
+pub const MAX_FRAME_MS: f64 = 60_000.0;
+
+/// The measurements of one rendered frame, as a controller sees them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FrameReport {
+    /// Tp: the image-generation time, ms.
+    pub tp_ms: f64,
+    /// `rays_per_depth[k]`: rays traced after k reflection/refraction events (k = 0: eye
+    /// rays). Length R + 1 for a frame rendered with depth R.
+    pub rays_per_depth: Vec<u64>,
+    /// Shadow rays toward the lights.
+    pub shadow_rays: u64,
+    /// Pixels rendered (after the resolution scale).
+    pub pixels: u64,
+    /// The quality this frame was rendered with.
+    pub quality: Quality,
+}
+
+/// Why a report was refused. A refused report changes nothing: every controller returns the
+/// error, keeps its quality and leaves its history and model untouched.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ReportError {
+    /// Tp is NaN or infinite.
+    #[error("frame time {0} ms is not a finite number")]
+    NotFinite(f64),
+    /// Tp is zero or negative (a timer that did not tick or ran backwards).
+    #[error("frame time {0} ms is not positive")]
+    NotPositive(f64),
+    /// Tp is longer than [`MAX_FRAME_MS`].
+    #[error("frame time {0} ms is absurd (over {MAX_FRAME_MS} ms)")]
+    Absurd(f64),
+    /// The predictive controller needs ray counts and a pixel count; this report has none.
+    #[error("the report has no rays or no pixels: the predictive controller needs both")]
+    NoRays,
+}
+
+impl FrameReport {
+    /// All rays: every depth and the shadow rays.
+    pub fn total_rays(&self) -> u64 {
+        self.rays_per_depth.iter().sum::<u64>() + self.shadow_rays
+    }
+
+    /// Checks Tp: finite, positive and at most [`MAX_FRAME_MS`].
+    pub fn check_time(&self) -> Result<(), ReportError> {
+        let t = self.tp_ms;
+        if !t.is_finite() {
+            Err(ReportError::NotFinite(t))
+        } else if t <= 0.0 {
+            Err(ReportError::NotPositive(t))
+        } else if t > MAX_FRAME_MS {
+            Err(ReportError::Absurd(t))
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Checks Tp and that the frame has pixels and eye rays (what a cost model needs).
+    pub fn check_rays(&self) -> Result<(), ReportError> {
+        self.check_time()?;
+        if self.pixels == 0 || self.rays_per_depth.first().copied().unwrap_or(0) == 0 {
+            return Err(ReportError::NoRays);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn report(tp_ms: f64) -> FrameReport {
+        FrameReport {
+            tp_ms,
+            rays_per_depth: vec![100, 50],
+            shadow_rays: 30,
+            pixels: 100,
+            quality: Quality::new(1.0, 1, 1.0),
+        }
+    }
+
+    #[test]
+    fn time_checks() {
+        assert!(report(16.0).check_time().is_ok());
+        assert!(matches!(
+            report(f64::NAN).check_time(),
+            Err(ReportError::NotFinite(_))
+        ));
+        assert!(matches!(
+            report(f64::INFINITY).check_time(),
+            Err(ReportError::NotFinite(_))
+        ));
+        assert_eq!(report(0.0).check_time(), Err(ReportError::NotPositive(0.0)));
+        assert_eq!(
+            report(-3.0).check_time(),
+            Err(ReportError::NotPositive(-3.0))
+        );
+        assert_eq!(
+            report(61_000.0).check_time(),
+            Err(ReportError::Absurd(61_000.0))
+        );
+        assert_eq!(report(16.0).total_rays(), 180);
+    }
+
+    #[test]
+    fn ray_checks() {
+        let mut r = report(16.0);
+        assert!(r.check_rays().is_ok());
+        r.pixels = 0;
+        assert_eq!(r.check_rays(), Err(ReportError::NoRays));
+        r.pixels = 100;
+        r.rays_per_depth.clear();
+        assert_eq!(r.check_rays(), Err(ReportError::NoRays));
+    }
+}

@@ -1,0 +1,306 @@
+//! Controllers against the simulated renderer: deterministic, on a fake clock, never the wall
+//! clock. Run with `--nocapture` to see the figures.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+use steadyray_control::metrics::{FrameRecord, RunSummary, summarize};
+use steadyray_control::simulate::{
+    Load, LoadProfile, RendererModel, SimRenderer, corridor_load, run,
+};
+use steadyray_control::{Band, Bounds, Controller, Quality, ReportError, Setup, from_name};
+
+const BAND: Band = Band::PAPER;
+const WARM_UP: usize = 20;
+
+fn setup(start: Quality) -> Setup {
+    Setup::new(BAND, Bounds::default(), start).unwrap()
+}
+
+fn controller(name: &str, start: Quality) -> Box<dyn Controller> {
+    from_name(name, setup(start), "").unwrap()
+}
+
+fn top() -> Quality {
+    Bounds::default().max_quality()
+}
+
+/// Frames in the band or under it at the highest quality (where no controller can do more).
+fn ok_pct(s: &RunSummary) -> f64 {
+    s.in_band_pct + s.under_at_max_pct
+}
+
+fn show(label: &str, s: &RunSummary) {
+    println!(
+        "{label:40} in {:5.1}% over {:4.1}% under {:4.1}% (at max {:4.1}%) rev/100 {:4.2} \
+         changes {:3} settle {:?}/{:?} spp {:6.1} R {:4.1} scale {:4.2}",
+        s.in_band_pct,
+        s.over_pct,
+        s.under_pct,
+        s.under_at_max_pct,
+        s.reversals_per_100,
+        s.quality_changes,
+        s.settle_mean,
+        s.settle_max,
+        s.mean_spp,
+        s.mean_depth,
+        s.mean_scale
+    );
+}
+
+fn sweep(name: &str, noise: f64, seed: u64) -> RunSummary {
+    let frames = 720;
+    let mut model = RendererModel::corridor(frames);
+    model.noise = noise;
+    model.seed = seed;
+    let mut c = controller(name, top());
+    // A warm-up lap, then the counted lap (the load profile repeats every `frames`).
+    let records = run(c.as_mut(), &model, frames + WARM_UP);
+    let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
+    show(&format!("{name} corridor noise {noise} seed {seed}"), &s);
+    s
+}
+
+#[test]
+fn the_simulated_corridor_needs_control() {
+    let model = RendererModel::corridor(720);
+    let max = top();
+    // Mirrors in view: the highest quality takes many times Tmax.
+    assert!(model.ideal_ms(&max, &corridor_load(0.0)) > 5.0 * BAND.tmax_ms());
+    // Nothing in view: even the highest quality is under Tmin.
+    assert!(model.ideal_ms(&max, &corridor_load(FRAC_PI_2)) < BAND.tmin_ms());
+    assert!(model.ideal_ms(&max, &corridor_load(-FRAC_PI_2)) < BAND.tmin_ms());
+    // Looking back at the spheres: medium.
+    let back = model.ideal_ms(&max, &corridor_load(PI));
+    assert!(back > model.ideal_ms(&max, &corridor_load(FRAC_PI_2)) && back < 2.0 * BAND.tmax_ms());
+    let fixed = sweep("fixed", 0.03, 1);
+    assert!(fixed.over_pct > 30.0 && fixed.under_at_max_pct > 20.0);
+}
+
+#[test]
+fn step_on_depth_oscillates_across_a_narrow_band() {
+    // A steady view where one level of R costs more than the band is wide.
+    let load = Load::geometric(0.9, 0.95, 1.0, 1.8);
+    let model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
+    let start = Quality::new(64.0, 16, 1.0);
+    let times: Vec<f64> = (0..=16)
+        .map(|r| model.ideal_ms(&Quality { depth: r, ..start }, &load))
+        .collect();
+    let r = times.iter().position(|&t| t > BAND.tmax_ms()).unwrap();
+    assert!(
+        r > 0 && times[r - 1] < BAND.tmin_ms(),
+        "no depth straddles the band: {times:?}"
+    );
+
+    let mut c = controller("step", start);
+    let records = run(c.as_mut(), &model, 300);
+    let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
+    show("step(depth) constant, band < one step", &s);
+    assert!(s.reversals_per_100 > 30.0, "{s:?}");
+    assert!(s.in_band_pct < 10.0);
+    for name in ["hysteresis", "predictive"] {
+        let mut c = controller(name, start);
+        let records = run(c.as_mut(), &model, 300);
+        let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
+        show(&format!("{name} constant, same load"), &s);
+        assert!(
+            s.in_band_pct >= 99.0 && s.reversals_per_100 <= 1.0,
+            "{name}: {s:?}"
+        );
+    }
+}
+
+#[test]
+fn hysteresis_and_predictive_hold_the_corridor_sweep() {
+    for seed in 1..=3 {
+        for name in ["hysteresis", "predictive"] {
+            let s = sweep(name, 0.03, seed);
+            assert!(ok_pct(&s) >= 99.0, "{name} seed {seed}: {s:?}");
+            assert!(s.longest_over_run <= 1, "{name} seed {seed}: {s:?}");
+            // The sweep turns four times; beyond that, hardly any flips.
+            assert!(s.reversals_per_100 <= 2.0, "{name} seed {seed}: {s:?}");
+        }
+        let s = sweep("predictive", 0.05, seed);
+        assert!(
+            ok_pct(&s) >= 99.0 && s.reversals_per_100 <= 1.0,
+            "seed {seed}: {s:?}"
+        );
+    }
+}
+
+#[test]
+fn steady_load_is_held_still_at_the_centre() {
+    for theta in [0.0, 0.6, 1.0, PI] {
+        let model =
+            RendererModel::corridor(720).with_profile(LoadProfile::Constant(corridor_load(theta)));
+        for name in ["hysteresis", "predictive"] {
+            let mut c = controller(name, top());
+            let records = run(c.as_mut(), &model, 600);
+            let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
+            show(&format!("{name} constant θ={theta:.1}"), &s);
+            assert!(ok_pct(&s) >= 99.0, "{name} θ={theta}: {s:?}");
+            assert!(s.reversals_per_100 <= 1.0, "{name} θ={theta}: {s:?}");
+            if name == "predictive" && s.under_at_max_pct == 0.0 {
+                // Continuous knobs: it sits at the band's centre, not at an edge.
+                assert!(
+                    (s.tp_mean - BAND.centre_ms()).abs() < 1.0,
+                    "θ={theta}: {s:?}"
+                );
+            }
+        }
+    }
+}
+
+fn step_run(name: &str, profile: LoadProfile, frames: usize) -> (Vec<FrameRecord>, RunSummary) {
+    let model = RendererModel::corridor(720).with_profile(profile.clone());
+    let mut c = controller(name, top());
+    let records = run(c.as_mut(), &model, frames);
+    let changes: Vec<usize> = profile
+        .changes(frames)
+        .iter()
+        .map(|&f| f - WARM_UP)
+        .collect();
+    let s = summarize(&records[WARM_UP..], BAND, top(), Some(&changes));
+    (records, s)
+}
+
+#[test]
+fn settles_within_five_frames_after_a_2x_load_step() {
+    let base = corridor_load(0.5);
+    let profiles = [
+        ("2x rays", LoadProfile::ray_step(base.clone(), 2.0, 16, 150)),
+        (
+            "2x cost per ray",
+            LoadProfile::Step {
+                before: base.clone(),
+                after: base.clone().with_cost_factor(2.0),
+                at: 150,
+            },
+        ),
+        ("0.5x rays", {
+            let LoadProfile::Step { before, after, at } =
+                LoadProfile::ray_step(base.clone(), 2.0, 16, 150)
+            else {
+                unreachable!()
+            };
+            LoadProfile::Step {
+                before: after,
+                after: before,
+                at,
+            }
+        }),
+    ];
+    for (label, profile) in profiles {
+        for name in ["hysteresis", "predictive"] {
+            let (_, s) = step_run(name, profile.clone(), 400);
+            show(&format!("{name} {label} at frame 150"), &s);
+            assert_eq!(
+                (s.settle_events, s.unsettled),
+                (1, 0),
+                "{name} {label}: {s:?}"
+            );
+            assert!(s.settle_max.unwrap() <= 5, "{name} {label}: {s:?}");
+        }
+    }
+}
+
+#[test]
+fn returns_to_the_highest_quality_when_the_load_drops() {
+    let profile = LoadProfile::Step {
+        before: corridor_load(0.0),
+        after: corridor_load(FRAC_PI_2),
+        at: 100,
+    };
+    for name in ["hysteresis", "predictive"] {
+        let (records, _) = step_run(name, profile.clone(), 300);
+        assert!(
+            records[99].quality.cmp_level(&top()).is_lt(),
+            "{name} never cut"
+        );
+        let back = records
+            .iter()
+            .skip(100)
+            .position(|r| r.quality == top())
+            .map(|p| p + 100);
+        println!("{name}: back at the highest quality on frame {back:?}");
+        let back = back.unwrap_or_else(|| panic!("{name} stayed degraded"));
+        assert!(back < 160, "{name} took until frame {back}");
+        assert!(
+            records[back..].iter().all(|r| r.quality == top()),
+            "{name} left the top again"
+        );
+    }
+}
+
+/// The qualities of a run where `spikes` frames are 10x hitches, and of the same run without.
+fn with_and_without_spike(name: &str, spike_at: usize) -> (Vec<Quality>, Vec<Quality>) {
+    let mut model =
+        RendererModel::corridor(720).with_profile(LoadProfile::Constant(corridor_load(0.4)));
+    model.timer_ms = 0.0; // so the hitch does not shift the timer's phase for later frames
+    let baseline = run(controller(name, top()).as_mut(), &model, 300);
+    model.spike_frames = vec![spike_at];
+    let spiked = run(controller(name, top()).as_mut(), &model, 300);
+    assert!(spiked[spike_at].tp_ms > 9.0 * baseline[spike_at].tp_ms);
+    let q = |r: Vec<FrameRecord>| r.into_iter().map(|r| r.quality).collect();
+    (q(baseline), q(spiked))
+}
+
+#[test]
+fn a_single_10x_spike_costs_at_most_two_frames_of_quality() {
+    for name in ["hysteresis", "predictive"] {
+        let (baseline, spiked) = with_and_without_spike(name, 150);
+        let lowered = baseline
+            .iter()
+            .zip(&spiked)
+            .filter(|(b, s)| s.cmp_level(b).is_lt())
+            .count();
+        println!("{name}: a 10x spike lowered quality for {lowered} frames");
+        assert!(lowered <= 2, "{name}: {lowered} frames lowered");
+        assert_eq!(
+            baseline[160..],
+            spiked[160..],
+            "{name} did not return to the same course"
+        );
+    }
+}
+
+#[test]
+fn refused_reports_never_poison_a_controller() {
+    let model = RendererModel::corridor(300);
+    for name in ["fixed", "step", "hysteresis", "predictive"] {
+        let start = Quality::new(8.0, 8, 1.0);
+        let mut clean = controller(name, start);
+        let baseline = run(clean.as_mut(), &model, 300);
+        let mut c = controller(name, start);
+        let mut renderer = SimRenderer::new(model.clone());
+        for (frame, expected) in baseline.iter().enumerate() {
+            let q = c.quality();
+            assert_eq!(q, expected.quality, "{name} diverged at frame {frame}");
+            let report = renderer.render(frame, q);
+            if frame % 37 == 5 {
+                for bad in [f64::NAN, f64::INFINITY, 0.0, -4.0, 1e9] {
+                    let mut r = report.clone();
+                    r.tp_ms = bad;
+                    assert!(c.observe(&r).is_err(), "{name} accepted {bad}");
+                    assert_eq!(c.quality(), q);
+                }
+            }
+            c.observe(&report).unwrap();
+        }
+    }
+    let mut p = controller("predictive", top());
+    let mut r = SimRenderer::new(model).render(0, top());
+    r.rays_per_depth.clear();
+    assert_eq!(p.observe(&r), Err(ReportError::NoRays));
+}
+
+#[test]
+fn reset_restarts_the_same_run() {
+    let model = RendererModel::corridor(200);
+    for name in ["step", "hysteresis", "predictive"] {
+        let mut c = controller(name, top());
+        let first = run(c.as_mut(), &model, 200);
+        c.reset();
+        assert_eq!(c.quality(), top());
+        let second = run(c.as_mut(), &model, 200);
+        assert_eq!(first, second, "{name}");
+    }
+}
