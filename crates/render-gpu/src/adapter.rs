@@ -41,7 +41,7 @@ pub struct AdapterSummary {
 }
 
 impl AdapterSummary {
-    fn of(adapter: &wgpu::Adapter) -> Self {
+    pub(crate) fn of(adapter: &wgpu::Adapter) -> Self {
         let info = adapter.get_info();
         let device_type = match info.device_type {
             wgpu::DeviceType::DiscreteGpu => DeviceKind::DiscreteGpu,
@@ -138,25 +138,21 @@ pub(crate) fn select_adapter(
     match best {
         Some((_, adapter)) => Ok(adapter),
         None => {
-            let mut why = Vec::new();
+            let mut why = vec!["compute shaders".to_string()];
             if let Some(name) = &options.adapter_name {
                 why.push(format!("name containing {name:?}"));
             }
             if !options.allow_software {
-                why.push("software adapters not allowed".to_string());
+                why.push("not software (software adapters not allowed)".to_string());
             }
             let seen = if seen.is_empty() {
                 "none".to_string()
             } else {
                 seen.join(", ")
             };
-            let why = if why.is_empty() {
-                "compute-capable".to_string()
-            } else {
-                why.join("; ")
-            };
             Err(RenderError::Gpu(format!(
-                "no GPU adapter found ({why}; adapters seen: {seen})"
+                "no GPU adapter found (required: {}; adapters seen: {seen})",
+                why.join(", ")
             )))
         }
     }

@@ -99,7 +99,12 @@ impl FrameBuffers {
         Self {
             image: GrowBuffer::new(device, "image", U::STORAGE | U::COPY_SRC, 0),
             srgb8: GrowBuffer::new(device, "srgb8 image", U::STORAGE | U::COPY_SRC, 0),
-            group_counts: GrowBuffer::new(device, "workgroup ray counts", U::STORAGE, 0),
+            group_counts: GrowBuffer::new(
+                device,
+                "workgroup ray counts",
+                U::STORAGE | U::COPY_DST,
+                0,
+            ),
             totals: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ray totals"),
                 size: TOTALS_BYTES,

@@ -1,7 +1,7 @@
 //! The GPU context a renderer owns: adapter, device, queue, error capture, and blocking
 //! readback.
 
-use crate::adapter::{GpuOptions, new_instance, select_adapter};
+use crate::adapter::{AdapterSummary, GpuOptions, new_instance, select_adapter};
 use crate::error::{ErrorSink, gpu_error, scoped};
 use std::sync::mpsc;
 use steadyray_render::RenderError;
@@ -11,6 +11,7 @@ pub(crate) struct GpuContext {
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
     pub(crate) info: wgpu::AdapterInfo,
+    pub(crate) adapter: AdapterSummary,
     /// Whether compute passes can write timestamps.
     pub(crate) timestamps: bool,
     pub(crate) errors: ErrorSink,
@@ -22,6 +23,7 @@ impl GpuContext {
         let instance = new_instance();
         let adapter = select_adapter(&instance, options)?;
         let info = adapter.get_info();
+        let summary = AdapterSummary::of(&adapter);
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let required_features = if timestamps {
             wgpu::Features::TIMESTAMP_QUERY
@@ -41,6 +43,7 @@ impl GpuContext {
             device,
             queue,
             info,
+            adapter: summary,
             timestamps,
             errors,
         })

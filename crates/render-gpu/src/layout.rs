@@ -8,8 +8,10 @@ use steadyray_render::MAX_DEPTH;
 
 /// Workgroups are `WORKGROUP_SIZE` × `WORKGROUP_SIZE` threads, one thread per pixel.
 pub const WORKGROUP_SIZE: u32 = 8;
-/// Ray counters per workgroup at most: depths 0..=MAX_DEPTH, then shadow rays.
-pub const COUNTER_SLOTS: u32 = MAX_DEPTH + 2;
+/// Ray counters per workgroup at most: depths 0..=MAX_DEPTH, then shadow rays, then the
+/// carries out of the shadow counter (a workgroup may trace more than 2³² shadow rays with
+/// many lights).
+pub const COUNTER_SLOTS: u32 = MAX_DEPTH + 3;
 /// Threads of the ray-count reduction workgroup.
 pub const REDUCE_SIZE: u32 = 256;
 
@@ -53,7 +55,7 @@ pub struct GpuFrame {
     pub light_count: u32,
     /// Workgroups along x.
     pub groups_x: u32,
-    /// Counters per workgroup: R + 2 (depths 0..=R, then shadow rays).
+    /// Counters per workgroup: R + 3 (depths 0..=R, shadow rays, shadow carries).
     pub counter_stride: u32,
     /// Workgroups in the dispatch.
     pub group_count: u32,

@@ -1,6 +1,6 @@
 //! [`GpuRenderer`]: the Whitted integrator of `docs/shading.md` as wgpu compute passes.
 
-use crate::adapter::GpuOptions;
+use crate::adapter::{AdapterSummary, GpuOptions};
 use crate::buffers::{FrameBuffers, TOTALS_BYTES};
 use crate::device::GpuContext;
 use crate::error::{gpu_error, scoped};
@@ -74,6 +74,11 @@ impl GpuRenderer {
             scene: None,
             last_frame: None,
         })
+    }
+
+    /// The adapter this renderer runs on.
+    pub fn adapter(&self) -> &AdapterSummary {
+        &self.ctx.adapter
     }
 
     /// Whether frame times come from GPU timestamps ([`TimingSource::GpuTimestamps`]).
@@ -162,6 +167,28 @@ impl GpuRenderer {
         })?;
         self.ctx.submit_and_wait(commands)?;
         self.ctx.read_buffer(f.image_readback.buffer(), size)
+    }
+
+    /// Records the reduction of the per-workgroup counters into 64-bit totals and their copy
+    /// to the start of the stats readback buffer.
+    fn encode_totals(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        bind_group: &wgpu::BindGroup,
+        counter_stride: u32,
+    ) {
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("reduce ray counts"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.pipelines.reduce_counts);
+            pass.set_bind_group(0, bind_group, &[]);
+            pass.dispatch_workgroups(counter_stride, 1, 1);
+        }
+        let f = &self.frame_buffers;
+        let bytes = u64::from(counter_stride) * 8;
+        encoder.copy_buffer_to_buffer(&f.totals, 0, &f.stats_readback, 0, bytes);
     }
 
     /// Checks that a frame of `settings` fits the device's buffer and dispatch limits.
@@ -253,7 +280,7 @@ impl Renderer for GpuRenderer {
         let groups_x = width.div_ceil(WORKGROUP_SIZE);
         let groups_y = height.div_ceil(WORKGROUP_SIZE);
         let group_count = groups_x * groups_y;
-        let counter_stride = settings.max_depth + 2;
+        let counter_stride = settings.max_depth + 3;
         let counters = u64::from(group_count) * u64::from(counter_stride);
         self.check_limits(settings, counters)?;
 
@@ -284,6 +311,8 @@ impl Renderer for GpuRenderer {
         {
             self.bind_group = None;
         }
+        // The image buffer is about to be overwritten: no frame to read until this one is.
+        self.last_frame = None;
         self.ctx
             .queue
             .write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&frame));
@@ -299,18 +328,9 @@ impl Renderer for GpuRenderer {
             pass.set_bind_group(0, &bind_group, &[]);
             pass.dispatch_workgroups(groups_x, groups_y, 1);
         }
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("reduce ray counts"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.pipelines.reduce_counts);
-            pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(counter_stride, 1, 1);
-        }
+        self.encode_totals(&mut encoder, &bind_group, counter_stride);
         let f = &self.frame_buffers;
         let totals_bytes = u64::from(counter_stride) * 8;
-        encoder.copy_buffer_to_buffer(&f.totals, 0, &f.stats_readback, 0, totals_bytes);
         if let Some(timer) = &self.timer {
             timer.resolve(&mut encoder, &f.stats_readback, TOTALS_BYTES);
         }
@@ -328,7 +348,7 @@ impl Renderer for GpuRenderer {
         let depth = settings.max_depth as usize;
         let rays = RayCounts {
             per_depth: totals[..=depth].to_vec(),
-            shadow: totals[depth + 1],
+            shadow: totals[depth + 1] + (totals[depth + 2] << 32),
         };
         let gpu_ms = self
             .timer
@@ -434,6 +454,52 @@ pub(crate) mod tests {
         );
         // Caught by the scopes: nothing left over for the device's uncaptured handler.
         renderer.ctx.errors.check().unwrap();
+    }
+
+    /// The per-workgroup counters are summed with carries: totals far beyond u32 come out
+    /// exact (a real GPU passes 4.29e9 rays per frame).
+    #[test]
+    fn count_reduction_carries_past_32_bits() {
+        let Some(mut renderer) = test_renderer() else {
+            return;
+        };
+        let scene = steadyray_scene::builtin("corridor").unwrap();
+        renderer.load_scene(&scene).unwrap();
+        // 64x64 pixels: 64 workgroups, R = 0: 3 counters each.
+        let settings = RenderSettings {
+            width: 64,
+            height: 64,
+            spp: 1.0,
+            max_depth: 0,
+        };
+        renderer.render(&scene.camera, &settings).unwrap();
+        let counts: Vec<u32> = (0..64u32)
+            .flat_map(|g| [u32::MAX - g, 3_000_000_000 + g, g % 3])
+            .collect();
+        let ctx = &renderer.ctx;
+        ctx.queue.write_buffer(
+            renderer.frame_buffers.group_counts.buffer(),
+            0,
+            bytemuck::cast_slice(&counts),
+        );
+        let bind_group = renderer.bind_group();
+        let mut encoder = renderer.encoder("reduce test");
+        renderer.encode_totals(&mut encoder, &bind_group, 3);
+        renderer.ctx.submit_and_wait(encoder.finish()).unwrap();
+        let bytes = renderer
+            .ctx
+            .read_buffer(&renderer.frame_buffers.stats_readback, 24)
+            .unwrap();
+        let expected = [0, 1, 2].map(|c| {
+            counts
+                .iter()
+                .skip(c)
+                .step_by(3)
+                .map(|&v| u64::from(v))
+                .sum::<u64>()
+        });
+        assert_eq!(parse_totals(&bytes), expected);
+        assert!(expected[..2].iter().all(|&t| t > u64::from(u32::MAX)));
     }
 
     #[test]

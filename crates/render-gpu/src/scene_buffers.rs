@@ -38,7 +38,7 @@ fn pack_material(material: &Material) -> Result<GpuMaterial, String> {
         Material::Diffuse { checker, .. } => {
             packed.kind = MAT_DIFFUSE;
             if let Some(checker) = checker {
-                if !(checker.size > 0.0) {
+                if checker.size.is_nan() || checker.size <= 0.0 {
                     return Err(format!("checker size {} is not positive", checker.size));
                 }
                 packed.checker_size = checker.size;
@@ -47,7 +47,7 @@ fn pack_material(material: &Material) -> Result<GpuMaterial, String> {
         }
         Material::Mirror { .. } => packed.kind = MAT_MIRROR,
         Material::Dielectric { ior, .. } => {
-            if !(ior > 0.0) {
+            if ior.is_nan() || ior <= 0.0 {
                 return Err(format!("index of refraction {ior} is not positive"));
             }
             packed.kind = MAT_DIELECTRIC;

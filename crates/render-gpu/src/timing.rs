@@ -56,11 +56,39 @@ impl GpuTimer {
         encoder.copy_buffer_to_buffer(&self.resolve, 0, destination, offset, TIMESTAMP_BYTES);
     }
 
-    /// Milliseconds between the two resolved timestamps in `bytes`, or None when they make
-    /// no sense (a zero or backwards pair).
+    /// Milliseconds between the two resolved timestamps in `bytes`.
     pub(crate) fn elapsed_ms(&self, bytes: &[u8]) -> Option<f64> {
-        let [begin, end]: [u64; 2] =
-            bytemuck::pod_read_unaligned(bytes.get(..TIMESTAMP_BYTES as usize)?);
-        (begin != 0 && end > begin).then(|| (end - begin) as f64 * self.period_ns * 1e-6)
+        ticks_to_ms(bytes, self.period_ns)
+    }
+}
+
+/// Milliseconds between the two little-endian u64 timestamps at the start of `bytes` at
+/// `period_ns` per tick, or None when they make no sense (missing, zero or backwards).
+fn ticks_to_ms(bytes: &[u8], period_ns: f64) -> Option<f64> {
+    let [begin, end]: [u64; 2] =
+        bytemuck::pod_read_unaligned(bytes.get(..TIMESTAMP_BYTES as usize)?);
+    (begin != 0 && end > begin).then(|| (end - begin) as f64 * period_ns * 1e-6)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stamps(begin: u64, end: u64) -> Vec<u8> {
+        bytemuck::cast_slice(&[begin, end]).to_vec()
+    }
+
+    #[test]
+    fn converts_ticks_with_the_period() {
+        assert_eq!(ticks_to_ms(&stamps(1_000, 3_001_000), 1.0), Some(3.0));
+        assert_eq!(ticks_to_ms(&stamps(10, 110), 40.0), Some(0.004));
+    }
+
+    #[test]
+    fn rejects_unwritten_or_backwards_stamps() {
+        assert_eq!(ticks_to_ms(&stamps(0, 5), 1.0), None);
+        assert_eq!(ticks_to_ms(&stamps(9, 5), 1.0), None);
+        assert_eq!(ticks_to_ms(&stamps(9, 9), 1.0), None);
+        assert_eq!(ticks_to_ms(&[0; 8], 1.0), None);
     }
 }

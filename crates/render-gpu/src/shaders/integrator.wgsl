@@ -3,7 +3,7 @@
 // workgroup and written out once per workgroup.
 
 var<workgroup> group_rays: array<atomic<u32>, COUNTER_SLOTS>;
-// Shadow rays traced by this thread.
+// Shadow rays traced by this thread (at most S·(R + 1)·lights: exact below 16,000 lights).
 var<private> shadow_rays: u32;
 
 // local(p, n, albedo): ambient plus the unoccluded point lights, no 1/π.
@@ -99,7 +99,10 @@ fn render_pixel(px: u32, py: u32) {
         sum += trace_sample(px, py, i, frame.eye, dir);
     }
     image[py * frame.width + px] = vec4<f32>(sum / f32(n), 1.0);
-    atomicAdd(&group_rays[frame.max_depth + 1u], shadow_rays);
+    let before = atomicAdd(&group_rays[frame.max_depth + 1u], shadow_rays);
+    if before > 0xffffffffu - shadow_rays {
+        atomicAdd(&group_rays[frame.max_depth + 2u], 1u);
+    }
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)

@@ -4,8 +4,9 @@
 const WORKGROUP_SIZE: u32 = 8u;
 // The largest depth R (steadyray_render::MAX_DEPTH).
 const MAX_DEPTH: u32 = 64u;
-// Ray counters per workgroup: one per depth 0..=MAX_DEPTH, then shadow rays.
-const COUNTER_SLOTS: u32 = 66u;
+// Ray counters per workgroup: one per depth 0..=MAX_DEPTH, then shadow rays (low word, then
+// the carries out of it).
+const COUNTER_SLOTS: u32 = 67u;
 // Threads of the ray-count reduction.
 const REDUCE_SIZE: u32 = 256u;
 
@@ -93,7 +94,7 @@ struct Light {
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
 // Linear RGBA radiance, row-major, top row first.
 @group(0) @binding(5) var<storage, read_write> image: array<vec4<f32>>;
-// counter_stride counters per workgroup: rays at depth 0..=R, then shadow rays.
+// counter_stride counters per workgroup: rays at depth 0..=R, shadow rays, shadow carries.
 @group(0) @binding(6) var<storage, read_write> group_counts: array<u32>;
 // The frame's totals per counter as 64-bit (low, high) pairs.
 @group(0) @binding(7) var<storage, read_write> totals: array<vec2<u32>>;

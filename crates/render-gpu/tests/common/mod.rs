@@ -4,14 +4,14 @@
 #![allow(dead_code)] // each test binary uses a different subset
 
 use std::sync::{Mutex, MutexGuard, OnceLock};
-use steadyray_render::Image;
+use steadyray_render::{Image, RayCounts};
 use steadyray_render_gpu::{GpuOptions, GpuRenderer};
 
 /// The test binary's GPU renderer (any adapter, software included; `STEADYRAY_ADAPTER`
 /// narrows it). None, after printing "SKIPPED: no GPU adapter", when there is none; a panic
 /// instead when `STEADYRAY_REQUIRE_GPU=1`.
 pub fn gpu() -> Option<MutexGuard<'static, GpuRenderer>> {
-    static GPU: OnceLock<Option<Mutex<GpuRenderer>>> = OnceLock::new();
+    static GPU: OnceLock<Result<Mutex<GpuRenderer>, String>> = OnceLock::new();
     let renderer = GPU.get_or_init(|| {
         // wgpu's warnings (RUST_LOG=warn) in the test output.
         let _ = env_logger::builder().is_test(true).try_init();
@@ -20,20 +20,17 @@ pub fn gpu() -> Option<MutexGuard<'static, GpuRenderer>> {
             allow_software: true,
         };
         match GpuRenderer::new(&options) {
-            Ok(renderer) => Some(Mutex::new(renderer)),
+            Ok(renderer) => Ok(Mutex::new(renderer)),
             Err(e) if std::env::var("STEADYRAY_REQUIRE_GPU").as_deref() == Ok("1") => {
                 panic!("STEADYRAY_REQUIRE_GPU=1 but no GPU renderer could be created: {e}")
             }
-            Err(e) => {
-                eprintln!("SKIPPED: no GPU adapter ({e})");
-                None
-            }
+            Err(e) => Err(e.to_string()),
         }
     });
     match renderer {
-        Some(m) => Some(m.lock().unwrap_or_else(|e| e.into_inner())),
-        None => {
-            eprintln!("SKIPPED: no GPU adapter");
+        Ok(m) => Some(m.lock().unwrap_or_else(|e| e.into_inner())),
+        Err(e) => {
+            eprintln!("SKIPPED: no GPU adapter ({e})");
             None
         }
     }
@@ -49,6 +46,8 @@ pub struct Diff {
     /// Pixels with some channel off by more than 2 levels.
     pub pixels_over_2: usize,
     pub pixels: usize,
+    /// The largest difference of linear values, relative to max(1, |value|).
+    pub max_linear: f32,
 }
 
 impl Diff {
@@ -63,6 +62,34 @@ impl Diff {
             "{what}: GPU and CPU images differ too much: {self:?}"
         );
     }
+}
+
+/// Checks the GPU's ray counts against the CPU's. Eye rays always agree exactly. On lavapipe
+/// (software) every count agrees exactly: the WGSL repeats the CPU's arithmetic operation
+/// for operation and LLVM neither fuses nor approximates it. A hardware driver may fuse
+/// multiply-adds or use its own sqrt and division rounding (Vulkan allows 2.5 ulp), which can
+/// flip a grazing hit or a Fresnel choice and so change one sample's chain: each diverging
+/// sample moves each per-depth count by at most 1 and the shadow count by at most
+/// lights·(R + 1). There the bound is 0.1% of the samples diverging (as the image bar allows
+/// 0.1% of pixels to differ).
+pub fn assert_counts(gpu: &RayCounts, cpu: &RayCounts, exact: bool, lights: usize, what: &str) {
+    assert_eq!(gpu.per_depth.len(), cpu.per_depth.len(), "{what}: depths");
+    assert_eq!(gpu.per_depth[0], cpu.per_depth[0], "{what}: eye rays");
+    if exact {
+        assert_eq!(gpu, cpu, "{what}: ray counts");
+        return;
+    }
+    let diverging = (cpu.per_depth[0] / 1000).max(1);
+    for (k, (g, c)) in gpu.per_depth.iter().zip(&cpu.per_depth).enumerate() {
+        assert!(g.abs_diff(*c) <= diverging, "{what}: depth {k}: {g} vs {c}");
+    }
+    let shadow_bound = diverging * (lights * cpu.per_depth.len()) as u64;
+    assert!(
+        gpu.shadow.abs_diff(cpu.shadow) <= shadow_bound,
+        "{what}: shadow rays {} vs {}",
+        gpu.shadow,
+        cpu.shadow
+    );
 }
 
 pub fn compare(a: &Image, b: &Image) -> Diff {
@@ -80,7 +107,15 @@ pub fn compare(a: &Image, b: &Image) -> Diff {
         pixels_over_2 += usize::from(d > 2);
     }
     let pixels = a.pixels.len();
+    let max_linear = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .flat_map(|(pa, pb)| pa.iter().zip(pb))
+        .map(|(x, y)| (x - y).abs() / x.abs().max(1.0))
+        .fold(0.0f32, f32::max);
     Diff {
+        max_linear,
         max,
         mean: sum as f64 / (pixels * 3) as f64,
         pixels_over_2,

@@ -1,0 +1,33 @@
+//! A fresh renderer refuses to render without a scene or to read an image before a frame.
+
+mod common;
+
+use common::gpu;
+use steadyray_render::{RenderError, RenderSettings, Renderer};
+use steadyray_scene::builtin;
+
+#[test]
+fn needs_a_scene_then_a_frame() {
+    let Some(mut gpu) = gpu() else {
+        return;
+    };
+    let scene = builtin("corridor").unwrap();
+    let s = RenderSettings {
+        width: 16,
+        height: 16,
+        spp: 1.0,
+        max_depth: 1,
+    };
+    assert!(matches!(gpu.read_image(), Err(RenderError::NoFrame)));
+    assert!(matches!(gpu.read_srgb8(), Err(RenderError::NoFrame)));
+    assert!(matches!(
+        gpu.render(&scene.camera, &s),
+        Err(RenderError::NoScene)
+    ));
+    gpu.load_scene(&scene).unwrap();
+    gpu.render(&scene.camera, &s).unwrap();
+    // Loading another scene keeps the last frame readable.
+    gpu.load_scene(&builtin("spheres").unwrap()).unwrap();
+    let image = gpu.read_image().unwrap();
+    assert_eq!((image.width, image.height), (16, 16));
+}
