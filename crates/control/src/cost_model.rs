@@ -98,7 +98,7 @@ impl CostModel {
     /// The predicted frame time for `rays` rays, ms; `None` before the first frame.
     pub fn predict_ms(&self, rays: f64) -> Option<f64> {
         self.fitted
-            .then(|| self.fixed_ms + self.ms_per_mray * rays * 1e-6)
+            .then_some(self.fixed_ms + self.ms_per_mray * rays * 1e-6)
     }
 
     /// The robust relative standard deviation of recent residuals (floored at `min_sigma`).

@@ -11,7 +11,8 @@
 //!   above the soft limit Tmin + `cut_above`·(Tmax − Tmin) and `min_interval` frames have
 //!   passed since the last change. The factor is target / Tp: proportional to the overshoot.
 //! - Raise: after `up_after` frames in a row below Tmin + `raise_below`·(Tmax − Tmin), by
-//!   target / mean(Tp) but at most 1 + `max_up`.
+//!   target / mean(Tp) but at most 1 + `max_up` (no limit when their mean is under Tmin:
+//!   frames out of the band are as wrong as frames over it).
 //! - Hitch: a frame over Tmax and more than `hitch_ratio` times the previous frame is held
 //!   (no change) unless the next frame confirms it, so a one-frame spike costs no quality.
 
@@ -26,10 +27,11 @@ pub struct HysteresisParams {
     /// `order`: knobs in raising order; cut in reverse. Default `depth,spp,scale`.
     pub order: KnobOrder,
     /// `target`: where in the band a change aims, as a fraction (0 = Tmin, 1 = Tmax).
-    /// Default 0.5, the centre.
+    /// Default 0.4 (17 ms in [15, 20]): below the centre, a budget with headroom, so that a
+    /// rising load takes a few frames to reach the soft limit.
     pub target: f64,
-    /// `cut_above`: the soft upper limit as a fraction of the band. Default 0.75 (18.75 ms
-    /// in [15, 20]): cutting before Tmax keeps frames in the band while the load rises.
+    /// `cut_above`: the soft upper limit as a fraction of the band. Default 0.8 (19 ms in
+    /// [15, 20]): cutting before Tmax keeps frames in the band while the load rises.
     pub cut_above: f64,
     /// `cut_after`: frames in a row above the soft limit before a soft cut. Default 1.
     pub cut_after: u32,
@@ -50,8 +52,8 @@ impl Default for HysteresisParams {
     fn default() -> Self {
         Self {
             order: KnobOrder::default(),
-            target: 0.5,
-            cut_above: 0.75,
+            target: 0.4,
+            cut_above: 0.8,
             cut_after: 1,
             raise_below: 0.3,
             up_after: 3,
@@ -169,7 +171,11 @@ impl Hysteresis {
             (target / tp).min(0.97)
         } else if self.headroom_run >= p.up_after && settled {
             let mean = self.headroom_sum / f64::from(self.headroom_run);
-            (target / mean).min(1.0 + p.max_up)
+            if mean < band.tmin_ms() {
+                target / mean
+            } else {
+                (target / mean).min(1.0 + p.max_up)
+            }
         } else {
             return None;
         };

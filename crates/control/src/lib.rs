@@ -15,7 +15,7 @@
 //! let model = simulate::RendererModel::corridor(720);
 //! let records = simulate::run(c.as_mut(), &model, 720);
 //! let s = metrics::summarize(&records[20..], setup.band, bounds.max_quality(), None);
-//! assert!(s.in_band_pct > 95.0);
+//! assert!(s.ok_pct > 99.0); // in the band, or under it at the highest quality
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
@@ -28,11 +28,12 @@
 //!   numbers, which reproduces the paper's oscillation across a narrow band.
 //! - `hysteresis` ([`Hysteresis`]): cut fast, raise slowly, as games' dynamic resolution
 //!   does. Cuts at once when Tp > Tmax (proportionally to the overshoot: nominal work ×
-//!   target/Tp), or after `cut_after`=1 frame above Tmin + `cut_above`=0.75 of the band;
+//!   target/Tp), or after `cut_after`=1 frame above Tmin + `cut_above`=0.8 of the band;
 //!   raises after `up_after`=3 frames below Tmin + `raise_below`=0.3 of the band, by at most
 //!   `max_up`=30 % of nominal work; `min_interval`=3 frames between changes (overloads
 //!   excepted); a frame over Tmax and `hitch_ratio`=3 times the previous one is held unless
-//!   the next frame confirms it. `target`=0.5 (the band's centre); `order`=depth,spp,scale.
+//!   the next frame confirms it. `target`=0.4 (below the centre: headroom for rising loads);
+//!   `order`=depth,spp,scale.
 //! - `predictive` ([`Predictive`]): fits Tp ≈ fixed_ms + ms_per_ray · rays online
 //!   ([`cost_model`]: exponential forgetting `forgetting`=0.95, outliers beyond
 //!   `outlier_k`=4 robust deviations set aside, `confirm`=2 outliers on one side confirm a

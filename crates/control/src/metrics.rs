@@ -36,6 +36,8 @@ pub struct RunSummary {
     pub under_pct: f64,
     /// Frames with Tp < Tmin already at the highest quality (not the controller's fault).
     pub under_at_max_pct: f64,
+    /// Frames where no controller could do better: in_band_pct + under_at_max_pct.
+    pub ok_pct: f64,
     pub tp_mean: f64,
     /// Population standard deviation.
     pub tp_std: f64,
@@ -184,14 +186,17 @@ pub fn summarize(
         }
     }
 
+    let in_band_pct = pct(count(&|r| position(r) == Position::In));
+    let under_at_max_pct = pct(count(&|r| position(r) == Position::Under && at_max(r)));
     let rays_total: u64 = records.iter().map(|r| r.rays).sum();
     let render_s: f64 = records.iter().map(|r| r.tp_ms).sum::<f64>() * 1e-3;
     RunSummary {
         frames: n,
-        in_band_pct: pct(count(&|r| position(r) == Position::In)),
+        in_band_pct,
         over_pct: pct(count(&|r| position(r) == Position::Over)),
         under_pct: pct(count(&|r| position(r) == Position::Under)),
-        under_at_max_pct: pct(count(&|r| position(r) == Position::Under && at_max(r))),
+        under_at_max_pct,
+        ok_pct: in_band_pct + under_at_max_pct,
         tp_mean,
         tp_std,
         tp_p50: quantile(&tp, 0.5),

@@ -23,11 +23,6 @@ fn top() -> Quality {
     Bounds::default().max_quality()
 }
 
-/// Frames in the band or under it at the highest quality (where no controller can do more).
-fn ok_pct(s: &RunSummary) -> f64 {
-    s.in_band_pct + s.under_at_max_pct
-}
-
 fn show(label: &str, s: &RunSummary) {
     println!(
         "{label:40} in {:5.1}% over {:4.1}% under {:4.1}% (at max {:4.1}%) rev/100 {:4.2} \
@@ -80,7 +75,7 @@ fn step_on_depth_oscillates_across_a_narrow_band() {
     // A steady view where one level of R costs more than the band is wide.
     let load = Load::geometric(0.9, 0.95, 1.0, 1.8);
     let model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
-    let start = Quality::new(64.0, 16, 1.0);
+    let start = Quality::new(128.0, 16, 1.0);
     let times: Vec<f64> = (0..=16)
         .map(|r| model.ideal_ms(&Quality { depth: r, ..start }, &load))
         .collect();
@@ -95,11 +90,15 @@ fn step_on_depth_oscillates_across_a_narrow_band() {
     let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
     show("step(depth) constant, band < one step", &s);
     assert!(s.reversals_per_100 > 30.0, "{s:?}");
-    assert!(s.in_band_pct < 10.0);
+    assert!(
+        s.in_band_pct < 50.0 && s.over_pct > 20.0 && s.under_pct > 20.0,
+        "{s:?}"
+    );
     for name in ["hysteresis", "predictive"] {
         let mut c = controller(name, start);
-        let records = run(c.as_mut(), &model, 300);
-        let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
+        let records = run(c.as_mut(), &model, 400);
+        // The steady stretch, once the first cuts from the start quality are done.
+        let s = summarize(&records[50..], BAND, top(), Some(&[]));
         show(&format!("{name} constant, same load"), &s);
         assert!(
             s.in_band_pct >= 99.0 && s.reversals_per_100 <= 1.0,
@@ -113,14 +112,14 @@ fn hysteresis_and_predictive_hold_the_corridor_sweep() {
     for seed in 1..=3 {
         for name in ["hysteresis", "predictive"] {
             let s = sweep(name, 0.03, seed);
-            assert!(ok_pct(&s) >= 99.0, "{name} seed {seed}: {s:?}");
+            assert!(s.ok_pct >= 99.0, "{name} seed {seed}: {s:?}");
             assert!(s.longest_over_run <= 1, "{name} seed {seed}: {s:?}");
             // The sweep turns four times; beyond that, hardly any flips.
             assert!(s.reversals_per_100 <= 2.0, "{name} seed {seed}: {s:?}");
         }
         let s = sweep("predictive", 0.05, seed);
         assert!(
-            ok_pct(&s) >= 99.0 && s.reversals_per_100 <= 1.0,
+            s.ok_pct >= 99.0 && s.reversals_per_100 <= 1.0,
             "seed {seed}: {s:?}"
         );
     }
@@ -136,7 +135,7 @@ fn steady_load_is_held_still_at_the_centre() {
             let records = run(c.as_mut(), &model, 600);
             let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
             show(&format!("{name} constant θ={theta:.1}"), &s);
-            assert!(ok_pct(&s) >= 99.0, "{name} θ={theta}: {s:?}");
+            assert!(s.ok_pct >= 99.0, "{name} θ={theta}: {s:?}");
             assert!(s.reversals_per_100 <= 1.0, "{name} θ={theta}: {s:?}");
             if name == "predictive" && s.under_at_max_pct == 0.0 {
                 // Continuous knobs: it sits at the band's centre, not at an edge.
@@ -175,7 +174,7 @@ fn settles_within_five_frames_after_a_2x_load_step() {
                 at: 150,
             },
         ),
-        ("0.5x rays", {
+        ("0.5x rays (a drop)", {
             let LoadProfile::Step { before, after, at } =
                 LoadProfile::ray_step(base.clone(), 2.0, 16, 150)
             else {
