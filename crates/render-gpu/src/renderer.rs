@@ -197,17 +197,20 @@ impl GpuRenderer {
         let max = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
-        let image_bytes = settings.pixels() * 16;
-        if image_bytes > max || counters * 4 > max {
-            return Err(gpu_error(
+        let needs = [
+            ("image", settings.pixels() * 16),
+            ("ray counter", counters * 4),
+        ];
+        match needs.into_iter().find(|&(_, bytes)| bytes > max) {
+            Some((what, bytes)) => Err(gpu_error(
                 "frame too large for this GPU",
                 format!(
-                    "{}x{} needs a {image_bytes}-byte image buffer; the device allows {max}",
-                    settings.width, settings.height
+                    "{}x{} at R={} needs a {bytes}-byte {what} buffer; the device allows {max}",
+                    settings.width, settings.height, settings.max_depth
                 ),
-            ));
+            )),
+            None => Ok(()),
         }
-        Ok(())
     }
 }
 
