@@ -1,0 +1,81 @@
+//! The command line: subcommands and their arguments.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+/// steadyray: a real-time ray tracer that holds its frame rate steady by trading image
+/// quality, frame by frame.
+#[derive(Debug, Parser)]
+#[command(name = "steadyray", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Reproduce the paper's experiment: every controller over the camera sweep, reported
+    /// as a table, frames.csv, summary.json and frame-time plots.
+    Bench(crate::bench::BenchArgs),
+    /// Render one still image to PNG (or EXR, by the file extension).
+    Render(RenderArgs),
+    /// List the built-in scenes.
+    Scenes,
+    /// List the GPU adapters wgpu can see.
+    Adapters,
+}
+
+/// Which renderer backend to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BackendChoice {
+    /// A real GPU (discrete or integrated) if there is one, else the CPU renderer.
+    Auto,
+    /// The wgpu compute renderer on any adapter, software ones (lavapipe) included.
+    Gpu,
+    /// The CPU reference renderer.
+    Cpu,
+}
+
+/// Arguments shared by every command that renders a scene.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
+    /// A built-in scene name (see `steadyray scenes`) or a scene file (.toml).
+    #[arg(long, default_value = steadyray_scene::DEFAULT_SCENE)]
+    pub scene: String,
+    /// Renderer backend.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
+    pub backend: BackendChoice,
+}
+
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 640)]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 360)]
+    pub height: u32,
+    /// Eye rays per pixel S (may be fractional: pixels then take floor(S) or floor(S)+1).
+    #[arg(long, default_value_t = 4.0)]
+    pub spp: f32,
+    /// Largest number of reflection/refraction events R on a path.
+    #[arg(long, default_value_t = 8)]
+    pub depth: u32,
+    /// Camera yaw in radians at the scene camera's eye (0 looks along -z).
+    #[arg(long, conflicts_with_all = ["frame", "frames"])]
+    pub yaw: Option<f32>,
+    /// Frame k of the scene's camera path.
+    #[arg(long)]
+    pub frame: Option<u32>,
+    /// Frames in the camera path (default: the path's own count).
+    #[arg(long, requires = "frame")]
+    pub frames: Option<u32>,
+    /// Print one JSON line with the frame's time and ray counts.
+    #[arg(long)]
+    pub stats: bool,
+    /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance).
+    #[arg(short = 'o', long = "output", default_value = "render.png")]
+    pub output: PathBuf,
+}

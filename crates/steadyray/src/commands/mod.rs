@@ -1,0 +1,4 @@
+//! One module per subcommand (`bench` has a folder of its own: `crate::bench`).
+
+pub mod render;
+pub mod scenes;

@@ -1,0 +1,39 @@
+//! Writing rendered images to disk.
+
+use anyhow::{Context, Result, bail};
+use std::path::Path;
+use steadyray_render::Image;
+
+/// Writes `image` as a tone-mapped 8-bit sRGB PNG, or as linear 32-bit float EXR, chosen by
+/// the file extension.
+pub fn save_image(image: &Image, path: &Path) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("png") => {
+            let rgba = image.to_srgb8_rgba();
+            image::save_buffer(
+                path,
+                &rgba,
+                image.width,
+                image.height,
+                image::ExtendedColorType::Rgba8,
+            )
+            .with_context(|| format!("cannot write {}", path.display()))
+        }
+        Some("exr") => {
+            let data: Vec<f32> = image.pixels.iter().flatten().copied().collect();
+            let buffer = image::Rgb32FImage::from_raw(image.width, image.height, data)
+                .context("image buffer has the wrong size")?;
+            buffer
+                .save(path)
+                .with_context(|| format!("cannot write {}", path.display()))
+        }
+        _ => bail!(
+            "cannot tell the image format of {}: use a .png or .exr file name",
+            path.display()
+        ),
+    }
+}
