@@ -24,7 +24,7 @@ use crate::report::{FrameReport, ReportError};
 /// Parameters of [`Hysteresis`], with their option names and defaults.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HysteresisParams {
-    /// `order`: knobs in raising order; cut in reverse. Default `depth,spp,scale`.
+    /// `order`: knobs in raising order; cut in reverse. Default `depth,scale,spp`.
     pub order: KnobOrder,
     /// `target`: where in the band a change aims, as a fraction (0 = Tmin, 1 = Tmax).
     /// Default 0.4 (17 ms in [15, 20]): below the centre, a budget with headroom, so that a
@@ -275,15 +275,17 @@ mod tests {
         let b = Bounds::default();
         let order = KnobOrder::default();
         let q = Quality::new(8.0, 16, 1.0);
-        // Cut: scale first (work ∝ scale²).
+        // Cut: S first.
         let c = scale_work(q, 0.25, &order, &b);
-        assert_eq!(c, Quality::new(8.0, 16, 0.5));
-        // A deep cut spills from scale (down to 0.25, factor 1/16) into S.
+        assert_eq!(c, Quality::new(2.0, 16, 1.0));
+        // A deep cut spills from S (down to 1, factor 1/8) into scale (work ∝ scale²).
         let d = scale_work(q, 1.0 / 32.0, &order, &b);
-        assert_eq!((d.scale, d.spp, d.depth), (0.25, 4.0, 16));
-        // Raise: depth first (at max already), then S.
-        let r = scale_work(Quality::new(8.0, 16, 0.25), 1.1, &order, &b);
-        assert!((r.spp - 8.8).abs() < 1e-5 && r.depth == 16 && r.scale == 0.25);
+        assert_eq!((d.scale, d.spp, d.depth), (0.5, 1.0, 16));
+        // Raise: depth first (at max already), then scale, then S.
+        let r = scale_work(Quality::new(1.0, 16, 0.5), 1.21, &order, &b);
+        assert!((r.scale - 0.55).abs() < 1e-5 && r.depth == 16 && r.spp == 1.0);
+        let r = scale_work(Quality::new(8.0, 16, 1.0), 1.1, &order, &b);
+        assert!((r.spp - 8.8).abs() < 1e-5 && r.depth == 16 && r.scale == 1.0);
         // Depth moves by whole steps, at least one.
         let only_depth: KnobOrder = "depth".parse().unwrap();
         assert_eq!(scale_work(q, 0.99, &only_depth, &b).depth, 15);

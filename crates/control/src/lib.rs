@@ -33,7 +33,7 @@
 //!   `max_up`=30 % of nominal work; `min_interval`=3 frames between changes (overloads
 //!   excepted); a frame over Tmax and `hitch_ratio`=3 times the previous one is held unless
 //!   the next frame confirms it. `target`=0.4 (below the centre: headroom for rising loads);
-//!   `order`=depth,spp,scale.
+//!   `order`=depth,scale,spp.
 //! - `predictive` ([`Predictive`]): fits Tp ≈ fixed_ms + ms_per_ray · rays online
 //!   ([`cost_model`]: exponential forgetting `forgetting`=0.95, outliers beyond
 //!   `outlier_k`=4 robust deviations set aside, `confirm`=2 outliers on one side confirm a
@@ -43,8 +43,8 @@
 //!   narrowed so that 2 measured noise deviations stay inside the band);
 //!   otherwise it takes the highest quality predicted to fit the target (`target`=0.5),
 //!   raising at most `max_raise`=2× the rays per change. Raising order (`order`): R while
-//!   at least `min_reach`=2 % of eye rays reach the deeper level, then S, then scale, then
-//!   the remaining R; cuts in reverse.
+//!   at least `min_reach`=2 % of eye rays reach the deeper level, then scale, then S, then
+//!   the remaining R; cuts in reverse (S goes first, resolution next).
 //!
 //! # Refused reports
 //!

@@ -17,9 +17,9 @@
 //!    ±12 % of the band around the target) so that two robust deviations of the noise still stay inside the band.
 //! 4. Otherwise it takes the highest quality whose predicted time is at most the target
 //!    Tmin + `target`·w, raising at most `max_raise` times the current rays per change
-//!    (cuts are not limited). Quality order (`order`, default `depth,spp,scale`): R first,
-//!    while at least `min_reach` of the eye rays reach the deeper level; then S (continuous);
-//!    then the scale (continuous); then any remaining R. Cuts go in reverse. Continuous
+//!    (cuts are not limited). Quality order (`order`, default `depth,scale,spp`): R first,
+//!    while at least `min_reach` of the eye rays reach the deeper level; then the scale
+//!    (continuous); then S (continuous); then any remaining R. Cuts go in reverse. Continuous
 //!    knobs let it land on the target instead of oscillating across the band.
 
 use crate::controller::{Controller, Setup, parse_option, within};
@@ -42,7 +42,7 @@ const SEARCH_STEPS: u32 = 40;
 /// Parameters of [`Predictive`], with their option names and defaults.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PredictiveParams {
-    /// `order`: knobs in raising order; cut in reverse. Default `depth,spp,scale`.
+    /// `order`: knobs in raising order; cut in reverse. Default `depth,scale,spp`.
     pub order: KnobOrder,
     /// `target`: the time a change aims for, as a fraction of the band. Default 0.5.
     pub target: f64,
