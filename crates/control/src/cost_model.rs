@@ -13,6 +13,8 @@ use std::collections::VecDeque;
 
 /// How many recent relative residuals the robust scale looks at.
 const RESIDUAL_WINDOW: usize = 32;
+/// How many recent prediction errors [`CostModel::recent_errors`] keeps.
+pub const ERROR_WINDOW: usize = 48;
 
 /// Parameters of [`CostModel`].
 #[derive(Clone, Debug, PartialEq)]
@@ -68,6 +70,7 @@ pub struct CostModel {
     ms_per_mray: f64,
     fitted: bool,
     residuals: VecDeque<f64>,
+    errors: VecDeque<f64>,
     pending: Vec<(f64, f64)>,
 }
 
@@ -81,6 +84,7 @@ impl CostModel {
             ms_per_mray: 0.0,
             fitted: false,
             residuals: VecDeque::with_capacity(RESIDUAL_WINDOW),
+            errors: VecDeque::with_capacity(ERROR_WINDOW),
             pending: Vec::new(),
         }
     }
@@ -109,6 +113,13 @@ impl CostModel {
         (1.4826 * median(&mut dev)).max(self.params.min_sigma)
     }
 
+    /// The relative errors (Tp - predicted) / predicted of the last [`ERROR_WINDOW`]
+    /// predictions since the cost last shifted, outliers included: the noise a planned
+    /// frame time will meet, slow tail and all.
+    pub fn recent_errors(&self) -> impl Iterator<Item = f64> + '_ {
+        self.errors.iter().copied()
+    }
+
     /// Takes one frame: `rays` traced in `tp_ms` (both already checked finite and positive).
     pub fn observe(&mut self, rays: f64, tp_ms: f64) -> Fit {
         let x = rays * 1e-6;
@@ -117,6 +128,10 @@ impl CostModel {
             return Fit::Accepted;
         };
         let rel = (tp_ms - pred) / pred;
+        if self.errors.len() == ERROR_WINDOW {
+            self.errors.pop_front();
+        }
+        self.errors.push_back(rel);
         let limit = self.params.outlier_k * self.sigma().max(self.params.min_sigma_ms / pred);
         if rel.abs() <= limit {
             self.pending.clear();
@@ -143,6 +158,7 @@ impl CostModel {
             self.add(px, py);
         }
         self.residuals.clear();
+        self.errors.clear();
         Fit::Shifted
     }
 

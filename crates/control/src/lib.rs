@@ -44,7 +44,8 @@
 //!   otherwise it takes the highest quality predicted to fit the target (`target`=0.5),
 //!   raising at most `max_raise`=2× the rays per change. Raising order (`order`): R while
 //!   at least `min_reach`=2 % of eye rays reach the deeper level, then scale, then S, then
-//!   the remaining R; cuts in reverse (S goes first, resolution next).
+//!   the remaining R; cuts in reverse (S goes first, resolution next). `ladder`=PATH: move
+//!   along a calibrated Pareto front of (S, R, scale) settings instead ([`ladder`]).
 //!
 //! # Refused reports
 //!
@@ -64,6 +65,7 @@ pub mod cost_model;
 pub mod error;
 pub mod fixed;
 pub mod hysteresis;
+pub mod ladder;
 pub mod metrics;
 pub mod predictive;
 pub mod quality;
@@ -77,8 +79,9 @@ pub use controller::{CONTROLLER_NAMES, Controller, Setup, from_name, parse_optio
 pub use error::ConfigError;
 pub use fixed::Fixed;
 pub use hysteresis::{Hysteresis, HysteresisParams};
+pub use ladder::{Ladder, LadderPoint, pareto_front};
 pub use metrics::{FrameRecord, RunSummary, best_fixed, summarize};
-pub use predictive::{Predictive, PredictiveParams};
+pub use predictive::{Aim, Predictive, PredictiveParams};
 pub use quality::{Bounds, Knob, KnobOrder, Quality};
 pub use report::{FrameReport, MAX_FRAME_MS, ReportError};
 pub use step::{Step, StepKnob, StepParams};
