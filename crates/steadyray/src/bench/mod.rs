@@ -41,7 +41,7 @@ pub struct BenchArgs {
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
     /// `step:knob=both` or `predictive:order=depth,spp`. `fixed` also adds the best fixed
     /// quality (unless --no-best-fixed).
-    #[arg(long, default_value = "fixed,step,hysteresis,predictive")]
+    #[arg(long, default_value = "fixed,step,step:knob=both,hysteresis,predictive")]
     pub controllers: String,
     /// Full-scale image width (default: suits the backend, so the band is reachable).
     #[arg(long)]
