@@ -52,6 +52,7 @@ impl World {
     /// bad material or vertex indices, non-positive radii, degenerate quads.
     pub fn new(scene: &Scene) -> Result<Self, RenderError> {
         let bad = |name: &str, why: &str| RenderError::Scene(format!("object {name:?}: {why}"));
+        let mut triangles = Vec::new();
         let mut world = World {
             spheres: Vec::new(),
             quads: Vec::new(),
@@ -106,13 +107,13 @@ impl World {
                                 .ok_or_else(|| bad(&obj.name, "vertex index out of range"))?;
                         }
                         // Degenerate triangles cannot be hit; skip rather than refuse.
-                        if let Some(t) = Triangle::new(v, m) {
-                            world.triangles.push(t);
-                        }
+                        triangles.extend(Triangle::new(v, m));
                     }
                 }
             }
         }
+        world.triangles = Triangles::new(triangles)
+            .map_err(|e| RenderError::Scene(format!("scene {:?}: meshes: {e}", scene.name)))?;
         Ok(world)
     }
 

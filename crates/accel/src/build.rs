@@ -1,0 +1,170 @@
+//! Building: obvhs's PLOC builder (with reinsertion and leaf collapse) over the triangles'
+//! boxes, then the two layouts: the binary [`FlatNode`] tree for the GPU and the 4-wide
+//! tree for the CPU, over the same leaf order of triangles.
+
+use crate::flat::{FlatChild, FlatNode};
+use crate::watertight::TriangleVerts;
+use crate::wide::{LEAF, MAX_LEAF_FIRST, Node4, STACK_SIZE, Wide};
+use glam::{Vec3, Vec3A};
+use obvhs::BvhBuildParams;
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
+
+/// Most triangles per leaf: a leaf's count has four bits in the 4-wide layout.
+const MAX_LEAF_SIZE: u32 = 4;
+
+/// Why a BVH could not be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum BvhError {
+    #[error("{0} triangles are more than the BVH holds (2^27)")]
+    TooManyTriangles(usize),
+    #[error("the BVH is {0} levels deep, more than traversal supports ({max})", max = crate::FLAT_STACK_SIZE)]
+    TooDeep(usize),
+}
+
+/// The PLOC tree of obvhs over `tris`' boxes (input indices in its primitive order).
+fn build_bvh2(tris: &[TriangleVerts]) -> Bvh2 {
+    let boxes: Vec<Aabb> = tris
+        .iter()
+        .map(|t| {
+            let mut b = Aabb::from_point(Vec3A::from_array(t[0]));
+            b.extend(Vec3A::from_array(t[1]));
+            b.extend(Vec3A::from_array(t[2]));
+            b
+        })
+        .collect();
+    let params = BvhBuildParams {
+        max_prims_per_leaf: MAX_LEAF_SIZE,
+        ..BvhBuildParams::medium_build()
+    };
+    obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut Default::default())
+}
+
+/// A child of binary node `i` as a [`FlatChild`]; inner children get their flat index from
+/// `emit`.
+fn flat_child(bvh2: &Bvh2, i: usize, flat: &mut Vec<FlatNode>, depth: &mut usize) -> FlatChild {
+    let n = &bvh2.nodes[i];
+    let (first, count) = if n.prim_count > 0 {
+        (n.first_index, n.prim_count)
+    } else {
+        (emit_flat(bvh2, i, flat, depth), 0)
+    };
+    FlatChild {
+        min: n.aabb.min.to_array(),
+        max: n.aabb.max.to_array(),
+        first,
+        count,
+    }
+}
+
+/// Appends inner binary node `i` and its subtree in depth-first order (a left child right
+/// after its parent); returns its flat index. `depth` counts the levels below it.
+fn emit_flat(bvh2: &Bvh2, i: usize, flat: &mut Vec<FlatNode>, depth: &mut usize) -> u32 {
+    let slot = flat.len();
+    flat.push(FlatNode::default());
+    let first = bvh2.nodes[i].first_index as usize;
+    let (mut dl, mut dr) = (0, 0);
+    let left = flat_child(bvh2, first, flat, &mut dl);
+    let right = flat_child(bvh2, first + 1, flat, &mut dr);
+    *depth = 1 + dl.max(dr);
+    flat[slot] = FlatNode::new(left, right);
+    slot as u32
+}
+
+/// Appends the 4-wide node covering binary inner node `i`: its children, opened largest
+/// first until there are four; returns its index. `depth` counts the levels below it.
+fn emit_wide(bvh2: &Bvh2, i: usize, nodes: &mut Vec<Node4>, depth: &mut usize) -> u32 {
+    let slot = nodes.len();
+    nodes.push(Node4::EMPTY);
+    let first = bvh2.nodes[i].first_index as usize;
+    let mut kids = vec![first, first + 1];
+    while kids.len() < 4 {
+        let widest = kids
+            .iter()
+            .enumerate()
+            .filter(|&(_, &k)| bvh2.nodes[k].prim_count == 0)
+            .max_by(|a, b| {
+                let area = |k: usize| bvh2.nodes[k].aabb.half_area();
+                area(*a.1).total_cmp(&area(*b.1))
+            })
+            .map(|(lane, _)| lane);
+        let Some(lane) = widest else { break };
+        let k = kids.swap_remove(lane);
+        let f = bvh2.nodes[k].first_index as usize;
+        kids.extend([f, f + 1]);
+    }
+    let mut node = Node4::EMPTY;
+    let mut below = 0;
+    for (lane, &k) in kids.iter().enumerate() {
+        let n = &bvh2.nodes[k];
+        for axis in 0..3 {
+            node.bounds[axis][lane] = n.aabb.min[axis];
+            node.bounds[axis + 3][lane] = n.aabb.max[axis];
+        }
+        node.child[lane] = if n.prim_count > 0 {
+            LEAF | (n.prim_count << 27) | n.first_index
+        } else {
+            let mut d = 0;
+            let c = emit_wide(bvh2, k, nodes, &mut d);
+            below = below.max(d);
+            c
+        };
+    }
+    *depth = 1 + below;
+    nodes[slot] = node;
+    slot as u32
+}
+
+/// Both layouts of the tree over `tris` (input order), or empty ones for no triangles.
+pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<FlatNode>, Wide), BvhError> {
+    if tris.len() >= MAX_LEAF_FIRST as usize {
+        return Err(BvhError::TooManyTriangles(tris.len()));
+    }
+    if tris.is_empty() {
+        return Ok((Vec::new(), Wide::default()));
+    }
+    let bvh2 = build_bvh2(tris);
+    let ids = bvh2.primitive_indices.clone();
+    let leaf_tris = ids.iter().map(|&i| tris[i as usize]).collect();
+    let root = &bvh2.nodes[0];
+    let (flat, nodes) = if root.prim_count > 0 {
+        // A single leaf: one node whose two children (and first lane) are that leaf.
+        let leaf = FlatChild {
+            min: root.aabb.min.to_array(),
+            max: root.aabb.max.to_array(),
+            first: root.first_index,
+            count: root.prim_count,
+        };
+        let mut node = Node4::EMPTY;
+        for axis in 0..3 {
+            node.bounds[axis][0] = root.aabb.min[axis];
+            node.bounds[axis + 3][0] = root.aabb.max[axis];
+        }
+        node.child[0] = LEAF | (root.prim_count << 27) | root.first_index;
+        (vec![FlatNode::new(leaf, leaf)], vec![node])
+    } else {
+        let (mut flat, mut nodes) = (Vec::new(), Vec::new());
+        let (mut flat_depth, mut wide_depth) = (0, 0);
+        emit_flat(&bvh2, 0, &mut flat, &mut flat_depth);
+        emit_wide(&bvh2, 0, &mut nodes, &mut wide_depth);
+        // A 4-wide level spans at least one binary level, and pushes at most 3 entries.
+        debug_assert!(wide_depth <= flat_depth);
+        if flat_depth > crate::FLAT_STACK_SIZE || 3 * wide_depth + 1 > STACK_SIZE {
+            return Err(BvhError::TooDeep(flat_depth));
+        }
+        (flat, nodes)
+    };
+    Ok((
+        flat,
+        Wide {
+            nodes,
+            tris: leaf_tris,
+            ids,
+        },
+    ))
+}
+
+/// `tris` as plain arrays for the watertight test.
+pub(crate) fn to_verts(tris: &[[Vec3; 3]]) -> Vec<TriangleVerts> {
+    tris.iter().map(|t| t.map(|v| v.to_array())).collect()
+}

@@ -1,0 +1,83 @@
+//! The triangle BVH of steadyray.
+//!
+//! [`Bvh::build`] runs obvhs's PLOC builder (parallel locally-ordered clustering, with
+//! reinsertion and SAH leaf collapse) over a mesh's triangles and lays the tree out twice
+//! over one leaf order of the triangles:
+//!
+//! - a binary tree of 64-byte [`FlatNode`]s holding both children's boxes, which the GPU
+//!   backend uploads and traverses in WGSL (`crates/render-gpu/src/shaders/geometry.wgsl`);
+//! - a 4-wide tree with structure-of-arrays child boxes, which [`Bvh::closest`] and
+//!   [`Bvh::any_hit`] traverse on the CPU.
+//!
+//! Triangles are intersected with the watertight test of Woop, Benthin and Wald
+//! ([`WatertightRay`]); box tests are widened by a few ulps so that the BVH finds exactly
+//! the hits a brute-force loop over all triangles finds, ties included (the lowest input
+//! index wins among hits at the same t).
+
+mod build;
+mod flat;
+mod watertight;
+mod wide;
+
+pub use build::BvhError;
+pub use flat::FlatNode;
+pub use watertight::{T_MIN, TriangleVerts, WatertightRay};
+
+use glam::{Vec3, Vec3A};
+use wide::Wide;
+
+/// The deepest binary tree a build accepts: the GPU traversal's stack holds this many
+/// entries (one pending child per level).
+pub const FLAT_STACK_SIZE: usize = 64;
+
+/// A BVH over a list of triangles (the "input order"), in two layouts over one leaf order.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    flat: Vec<FlatNode>,
+    wide: Wide,
+}
+
+impl Bvh {
+    /// Builds the BVH of `tris` (corners in world space; they must be finite). Zero-area
+    /// triangles may be included: they are never hit. No triangles gives an empty BVH
+    /// that nothing hits.
+    pub fn build(tris: &[[Vec3; 3]]) -> Result<Self, BvhError> {
+        let (flat, wide) = build::build(&build::to_verts(tris))?;
+        Ok(Self { flat, wide })
+    }
+
+    /// The number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.wide.ids.len()
+    }
+
+    /// The binary tree for the GPU; node 0 is the root. Empty for an empty BVH.
+    pub fn flat_nodes(&self) -> &[FlatNode] {
+        &self.flat
+    }
+
+    /// The leaf order: position k of the leaves' triangle ranges holds input triangle
+    /// `leaf_order()[k]`.
+    pub fn leaf_order(&self) -> &[u32] {
+        &self.wide.ids
+    }
+
+    /// The nodes of the CPU's 4-wide tree (a size measure).
+    pub fn wide_node_count(&self) -> usize {
+        self.wide.nodes.len()
+    }
+
+    /// The nearest hit of the ray `origin + t·dir` on t in (T_MIN, t_max): its t and the
+    /// input index of the triangle. Among hits at the same t the lowest index wins, and a
+    /// hit exactly at t_max is not taken, as in a brute-force loop over the input.
+    #[inline]
+    pub fn closest(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> Option<(f32, u32)> {
+        self.wide.closest(origin, dir, t_max)
+    }
+
+    /// Whether the ray `origin + t·dir` hits any triangle on t in (T_MIN, t_max).
+    #[inline]
+    pub fn any_hit(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> bool {
+        self.wide.any_hit(origin, dir, t_max)
+    }
+}
