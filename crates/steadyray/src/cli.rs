@@ -23,6 +23,11 @@ pub enum Command {
     Scenes,
     /// List the GPU adapters wgpu can see.
     Adapters,
+    /// Compare two images (FLIP, PSNR, SSIM) and print them as one JSON line.
+    Compare(crate::commands::compare::CompareArgs),
+    /// Measure (S, R, scale) settings' cost and FLIP over views of the camera path and write
+    /// the Pareto front as a ladder for `predictive:ladder=FILE`.
+    Calibrate(crate::commands::calibrate::CalibrateArgs),
 }
 
 /// Which renderer backend to use.

@@ -21,6 +21,8 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Adapters => backend::print_adapters(),
+        Command::Compare(args) => commands::compare::run(args),
+        Command::Calibrate(args) => commands::calibrate::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

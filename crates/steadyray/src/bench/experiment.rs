@@ -1,5 +1,6 @@
 //! Running controllers over the sweep, and finding the best fixed quality.
 
+use super::quality::{References, flip_stats, shown};
 use super::record::{ControllerRun, FrameRow};
 use super::source::FrameSource;
 use anyhow::{Context, Result};
@@ -17,13 +18,25 @@ pub struct Sweep {
     pub bounds: Bounds,
 }
 
+/// What a run keeps besides the timings: FLIP of the sampled frames, the delivered frames.
+#[derive(Clone, Copy, Default)]
+pub struct Capture<'a> {
+    /// References of the sampled frames (`bench --quality`).
+    pub references: Option<&'a References>,
+    /// Keep every counted frame's picture (`bench --record`).
+    pub record: bool,
+}
+
 /// Runs `controller` over the sweep: warm-up frames first (not counted), then every frame
-/// of the sweep, each rendered at the quality the controller asked for.
+/// of the sweep, each rendered at the quality the controller asked for. Images are read
+/// back, compared and kept only after a frame's Tp was taken (the renderer's own timing),
+/// so `capture` never changes the timings.
 pub fn run_controller(
     source: &mut dyn FrameSource,
     controller: &mut dyn Controller,
     name: &str,
     sweep: &Sweep,
+    capture: Capture<'_>,
     progress: &ProgressBar,
 ) -> Result<ControllerRun> {
     controller.reset();
@@ -36,6 +49,8 @@ pub fn run_controller(
     }
     let mut rows = Vec::with_capacity(sweep.frames as usize);
     let mut records = Vec::with_capacity(sweep.frames as usize);
+    let mut recorded = Vec::new();
+    let (width, height) = source.resolution();
     for k in 0..sweep.frames {
         let q = controller.quality();
         let m = source
@@ -45,6 +60,24 @@ pub fn run_controller(
         let tp_ms = m.report.tp_ms;
         if let Err(e) = controller.observe(&m.report) {
             log::warn!("{name}: frame {k}: report refused: {e}");
+        }
+        let reference = capture.references.and_then(|r| r.get(k));
+        let mut flip = None;
+        if reference.is_some() || capture.record {
+            let image = source
+                .last_image()?
+                .context("this source produces no images to measure or record")?;
+            if let Some(reference) = reference {
+                let delivered = shown(&image, width, height)?;
+                flip = Some(steadyray_quality::flip(reference, &delivered)?.mean());
+            }
+            if capture.record {
+                recorded.push(steadyray_quality::Rgb8Image::from_rgba(
+                    image.width,
+                    image.height,
+                    &image.to_srgb8_rgba(),
+                )?);
+            }
         }
         rows.push(FrameRow {
             frame: k,
@@ -56,6 +89,7 @@ pub fn run_controller(
             wall_ms: m.wall_ms,
             rays,
             in_band: sweep.band.contains(tp_ms),
+            flip,
         });
         records.push(FrameRecord {
             frame: k as usize,
@@ -72,10 +106,13 @@ pub fn run_controller(
         sweep.bounds.max_quality(),
         changes.as_deref(),
     );
+    let flips: Vec<f64> = rows.iter().filter_map(|r| r.flip).collect();
     Ok(ControllerRun {
         name: name.to_string(),
         rows,
         summary,
+        flip: flip_stats(&flips),
+        recorded,
     })
 }
 

@@ -2,10 +2,16 @@
 //! same camera sweep from the same starting quality, one after another in one process; the
 //! paper's fixed-R baseline and the best fixed quality run beside them. Writes a table,
 //! `frames.csv`, `summary.json` and `frametime.png`/`.svg` into the output folder.
+//!
+//! `--quality` also measures what each controller delivers: every `--every`-th frame's FLIP
+//! against a reference of the same view (rendered before the runs, [`quality`]);
+//! `--record DIR` keeps every delivered frame for playback ([`playback`]).
 
 mod experiment;
 mod machine;
+mod playback;
 mod plot;
+pub mod quality;
 mod record;
 mod report;
 mod source;
@@ -14,7 +20,7 @@ use crate::backend::create_renderer;
 use crate::cli::SceneArgs;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use experiment::{Sweep, run_controller, search_best_fixed};
+use experiment::{Capture, Sweep, run_controller, search_best_fixed};
 use indicatif::{ProgressBar, ProgressStyle};
 use record::ControllerRun;
 use report::{RunContext, quality_label};
@@ -41,7 +47,10 @@ pub struct BenchArgs {
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
     /// `step:knob=both` or `predictive:order=depth,spp`. `fixed` also adds the best fixed
     /// quality (unless --no-best-fixed).
-    #[arg(long, default_value = "fixed,step,step:knob=both,hysteresis,predictive")]
+    #[arg(
+        long,
+        default_value = "fixed,step,step:knob=both,hysteresis,predictive"
+    )]
     pub controllers: String,
     /// Full-scale image width (default: suits the backend, so the band is reachable).
     #[arg(long)]
@@ -83,6 +92,25 @@ pub struct BenchArgs {
     /// Views of the sweep the best-fixed search renders each candidate at.
     #[arg(long, default_value_t = 48)]
     pub search_views: u32,
+    /// Measure the delivered quality: FLIP of every `--every`-th frame against a reference
+    /// render of the same view (outside the timed loop). Adds flip_mean and flip_p95 to
+    /// summary.json and the table, a flip column to frames.csv and a quality row to the plot.
+    #[arg(long)]
+    pub quality: bool,
+    /// With --quality: measure frames 0, K, 2K, ... of the sweep.
+    #[arg(long, default_value_t = 24, value_name = "K")]
+    pub every: u32,
+    /// With --quality: the reference's eye rays per pixel S (at full scale).
+    #[arg(long, default_value_t = 256.0)]
+    pub reference_spp: f32,
+    /// With --quality: the reference's reflection depth R.
+    #[arg(long, default_value_t = 16)]
+    pub reference_depth: u32,
+    /// Write every delivered frame (PNG, full resolution) and timings.csv for playback
+    /// (`steadyray view --playback`): into DIR when one controller runs, else into one
+    /// sub-folder of DIR per controller.
+    #[arg(long, value_name = "DIR")]
+    pub record: Option<PathBuf>,
 }
 
 /// One controller to run, as named on the command line.
@@ -195,6 +223,41 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {msg} [{elapsed}]")
             .expect("the progress template is valid"),
     );
+    let references = if args.quality {
+        let every = args.every.max(1);
+        progress.inc_length(args.frames.div_ceil(every) as u64);
+        progress.set_message("references");
+        let reference = Quality::new(args.reference_spp, args.reference_depth, 1.0);
+        Some(quality::References::render(
+            source.as_mut(),
+            args.frames,
+            args.every,
+            reference,
+            || progress.inc(1),
+        )?)
+    } else {
+        None
+    };
+    let run_count =
+        specs.len() + usize::from(!args.no_best_fixed && specs.iter().any(|s| s.name == "fixed"));
+    // Encodes a finished run's frames (between runs, never during one) and frees them.
+    let keep = |mut run: ControllerRun| -> Result<ControllerRun> {
+        if let Some(dir) = &args.record {
+            let folder = playback::run_folder(dir, &run.name, run_count);
+            playback::write_recording(&run, &folder, width, height)?;
+            progress.println(format!(
+                "bench: recorded {} to {}",
+                run.name,
+                folder.display()
+            ));
+            run.recorded = Vec::new();
+        }
+        Ok(run)
+    };
+    let capture = Capture {
+        references: references.as_ref(),
+        record: args.record.is_some(),
+    };
     let mut runs: Vec<ControllerRun> = Vec::new();
     for (spec, controller) in &mut controllers {
         let label = match (spec.name.as_str(), spec.options.is_empty()) {
@@ -202,25 +265,27 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             (name, true) => name.to_string(),
             (name, false) => format!("{name} {}", spec.options.replace(',', "+")),
         };
-        runs.push(run_controller(
+        runs.push(keep(run_controller(
             source.as_mut(),
             controller.as_mut(),
             &label,
             &sweep,
+            capture,
             &progress,
-        )?);
+        )?)?);
         if spec.name == "fixed" && !args.no_best_fixed {
             progress.inc_length((args.frames + args.warmup) as u64);
             let best = search_best_fixed(source.as_mut(), &sweep, args.search_views, &progress)?;
             let mut fixed = from_name("fixed", Setup::new(band, bounds, best)?, "")?;
             let label = format!("best fixed {}", quality_label(&best, &bounds));
-            runs.push(run_controller(
+            runs.push(keep(run_controller(
                 source.as_mut(),
                 fixed.as_mut(),
                 &label,
                 &sweep,
+                capture,
                 &progress,
-            )?);
+            )?)?);
         }
     }
     progress.finish_and_clear();
@@ -258,6 +323,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         "bench: wrote frames.csv, summary.json, frametime.png and frametime.svg to {}",
         args.out.display()
     );
+
     Ok(())
 }
 

@@ -1,5 +1,6 @@
 //! The paper's Figure 4 for every controller: frame time against frame with the band shaded,
-//! and the quality parameters below it.
+//! and the quality parameters below it; with `--quality`, a third row per controller shows
+//! the measured frames' FLIP against the reference.
 
 use super::record::ControllerRun;
 use anyhow::{Result, anyhow};
@@ -12,6 +13,8 @@ use std::sync::Once;
 const PANEL_WIDTH: u32 = 1400;
 const TIME_HEIGHT: u32 = 230;
 const QUALITY_HEIGHT: u32 = 130;
+const FLIP_HEIGHT: u32 = 110;
+const FLIP_COLOUR: RGBColor = RGBColor(180, 40, 120);
 const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 const BAND_COLOUR: RGBColor = RGBColor(200, 230, 200);
 const TP_COLOUR: RGBColor = RGBColor(20, 60, 160);
@@ -26,7 +29,7 @@ pub fn write_plots(runs: &[ControllerRun], band: (f64, f64), png: &Path, svg: &P
         register_font("sans-serif", FontStyle::Normal, FONT)
             .unwrap_or_else(|_| panic!("the embedded DejaVuSans.ttf is a valid font"));
     });
-    let height = (TIME_HEIGHT + QUALITY_HEIGHT) * runs.len().max(1) as u32;
+    let height = panel_height(runs) * runs.len().max(1) as u32;
     {
         let root = BitMapBackend::new(png, (PANEL_WIDTH, height)).into_drawing_area();
         draw(&root, runs, band)?;
@@ -38,6 +41,16 @@ pub fn write_plots(runs: &[ControllerRun], band: (f64, f64), png: &Path, svg: &P
     root.present()
         .map_err(|e| anyhow!("cannot write {}: {e}", svg.display()))?;
     Ok(())
+}
+
+/// Whether any run measured FLIP (then every panel gets a FLIP row).
+fn has_flip(runs: &[ControllerRun]) -> bool {
+    runs.iter().any(|r| r.flip.is_some())
+}
+
+/// The height of one controller's panel.
+fn panel_height(runs: &[ControllerRun]) -> u32 {
+    TIME_HEIGHT + QUALITY_HEIGHT + if has_flip(runs) { FLIP_HEIGHT } else { 0 }
 }
 
 fn draw<DB: DrawingBackend>(
@@ -65,10 +78,21 @@ where
         .flat_map(|r| r.rows.iter().map(|f| f.spp as f64))
         .fold(1.0, f64::max);
     let q_max = depth_max.max(spp_max) * 1.1;
+    let flip_max = runs
+        .iter()
+        .flat_map(|r| r.rows.iter().filter_map(|f| f.flip))
+        .fold(0.05, f64::max)
+        * 1.1;
     for (run, area) in runs.iter().zip(root.split_evenly((runs.len().max(1), 1))) {
-        let (top, bottom) = area.split_vertically(TIME_HEIGHT);
+        let (top, rest) = area.split_vertically(TIME_HEIGHT);
         draw_time(&top, run, band, t_max)?;
-        draw_quality(&bottom, run, q_max)?;
+        if has_flip(runs) {
+            let (middle, bottom) = rest.split_vertically(QUALITY_HEIGHT);
+            draw_quality(&middle, run, q_max)?;
+            draw_flip(&bottom, run, flip_max)?;
+        } else {
+            draw_quality(&rest, run, q_max)?;
+        }
     }
     Ok(())
 }
@@ -177,6 +201,53 @@ where
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()
+        .map_err(plot_err)?;
+    Ok(())
+}
+
+/// FLIP of the measured frames against frame, with the run's mean in the caption.
+fn draw_flip<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    run: &ControllerRun,
+    flip_max: f64,
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let frames = run.rows.len().max(1) as f64;
+    let caption = run.flip.map_or_else(
+        || "FLIP: not measured".to_string(),
+        |(mean, p95)| format!("FLIP vs reference: mean {mean:.4}, p95 {p95:.4} (lower is better)"),
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 14))
+        .margin(6)
+        .x_label_area_size(22)
+        .y_label_area_size(50)
+        .right_y_label_area_size(50)
+        .build_cartesian_2d(0.0..frames, 0.0..flip_max)
+        .map_err(plot_err)?;
+    chart
+        .configure_mesh()
+        .y_desc("FLIP")
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(plot_err)?;
+    let points: Vec<(f64, f64)> = run
+        .rows
+        .iter()
+        .enumerate()
+        .filter_map(|(i, f)| f.flip.map(|v| (i as f64, v)))
+        .collect();
+    chart
+        .draw_series(LineSeries::new(points.clone(), FLIP_COLOUR.stroke_width(1)))
+        .map_err(plot_err)?;
+    chart
+        .draw_series(
+            points
+                .into_iter()
+                .map(|p| Circle::new(p, 2, FLIP_COLOUR.filled())),
+        )
         .map_err(plot_err)?;
     Ok(())
 }

@@ -4,6 +4,7 @@ use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
 use steadyray_control::metrics::RunSummary;
+use steadyray_quality::Rgb8Image;
 
 /// One counted frame of one controller's sweep (a row of `frames.csv`).
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +22,8 @@ pub struct FrameRow {
     /// Rays traced (every depth and shadow rays).
     pub rays: u64,
     pub in_band: bool,
+    /// Mean FLIP against the reference, for the frames `bench --quality` measured.
+    pub flip: Option<f64>,
 }
 
 /// One controller's whole sweep and its figures.
@@ -30,6 +33,10 @@ pub struct ControllerRun {
     pub name: String,
     pub rows: Vec<FrameRow>,
     pub summary: RunSummary,
+    /// Mean and 95th percentile of the measured frames' FLIP (`bench --quality`).
+    pub flip: Option<(f64, f64)>,
+    /// Every counted frame's picture at its rendered size (`bench --record`), in order.
+    pub recorded: Vec<Rgb8Image>,
 }
 
 /// Writes `frames.csv`: one row per frame and controller.
@@ -39,13 +46,13 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
     );
     writeln!(
         out,
-        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,rays,in_band"
+        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,rays,in_band,flip"
     )?;
     for run in runs {
         for r in &run.rows {
             writeln!(
                 out,
-                "{},{},{:.6},{},{},{},{:.4},{:.4},{},{}",
+                "{},{},{:.6},{},{},{},{:.4},{:.4},{},{},{}",
                 run.name,
                 r.frame,
                 r.angle,
@@ -55,7 +62,8 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
                 r.tp_ms,
                 r.wall_ms,
                 r.rays,
-                u8::from(r.in_band)
+                u8::from(r.in_band),
+                r.flip.map_or_else(String::new, |f| format!("{f:.6}"))
             )?;
         }
     }

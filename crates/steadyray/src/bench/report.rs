@@ -33,6 +33,12 @@ struct ControllerEntry<'a> {
     name: &'a str,
     #[serde(flatten)]
     summary: &'a RunSummary,
+    /// Mean FLIP of the measured frames (`bench --quality`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    flip_mean: Option<f64>,
+    /// 95th percentile of the measured frames' FLIP.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    flip_p95: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -62,6 +68,8 @@ pub fn write_summary(context: &RunContext, runs: &[ControllerRun], path: &Path) 
             .map(|r| ControllerEntry {
                 name: &r.name,
                 summary: &r.summary,
+                flip_mean: r.flip.map(|f| f.0),
+                flip_p95: r.flip.map(|f| f.1),
             })
             .collect(),
     };
@@ -80,7 +88,7 @@ pub fn table(runs: &[ControllerRun]) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{:<name_width$} {:>7} {:>6} {:>6} {:>8} {:>7} {:>6} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>5} {:>5} {:>8}",
+        "{:<name_width$} {:>7} {:>6} {:>6} {:>8} {:>7} {:>6} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>5} {:>5} {:>8} {:>6} {:>6}",
         "controller",
         "in_band",
         "over",
@@ -98,15 +106,21 @@ pub fn table(runs: &[ControllerRun]) -> String {
         "S",
         "R",
         "Mrays/s",
+        "flip",
+        "flip95",
     );
     for r in runs {
         let s = &r.summary;
         let settle = s
             .settle_max
             .map_or_else(|| "-".to_string(), |m| m.to_string());
+        let (flip, flip95) = r.flip.map_or_else(
+            || ("-".to_string(), "-".to_string()),
+            |(mean, p95)| (format!("{mean:.4}"), format!("{p95:.4}")),
+        );
         let _ = writeln!(
             out,
-            "{:<name_width$} {:>6.1}% {:>5.1}% {:>5.1}% {:>7.1}% {:>7.2} {:>6.2} {:>7.2} {:>7.2} {:>7.2} {:>7.2} {:>8.2} {:>8} {:>6} {:>5.2} {:>5.2} {:>8.1}",
+            "{:<name_width$} {:>6.1}% {:>5.1}% {:>5.1}% {:>7.1}% {:>7.2} {:>6.2} {:>7.2} {:>7.2} {:>7.2} {:>7.2} {:>8.2} {:>8} {:>6} {:>5.2} {:>5.2} {:>8.1} {:>6} {:>6}",
             r.name,
             s.in_band_pct,
             s.over_pct,
@@ -124,6 +138,8 @@ pub fn table(runs: &[ControllerRun]) -> String {
             s.mean_spp,
             s.mean_depth,
             s.rays_per_s / 1e6,
+            flip,
+            flip95,
         );
     }
     out

@@ -4,7 +4,7 @@
 use anyhow::Result;
 use steadyray_control::simulate::{RendererModel, SimRenderer};
 use steadyray_control::{FrameReport, Quality};
-use steadyray_render::{RenderSettings, Renderer};
+use steadyray_render::{Image, RenderSettings, Renderer};
 use steadyray_scene::Scene;
 
 /// One rendered (or simulated) frame as the experiment sees it.
@@ -27,6 +27,9 @@ pub trait FrameSource {
     fn frame(&mut self, k: u32, n: u32, q: Quality) -> Result<Measured>;
     /// Frames where the load changes suddenly by construction, when known.
     fn load_changes(&self, n: u32) -> Option<Vec<usize>>;
+    /// The linear image of the last frame (read back outside any timing), or `None` for a
+    /// source without images (the simulated renderer).
+    fn last_image(&mut self) -> Result<Option<Image>>;
 }
 
 /// The image size for a resolution scale: each side scaled and rounded, at least 1 pixel.
@@ -80,6 +83,10 @@ impl FrameSource for RendererSource {
     fn load_changes(&self, _n: u32) -> Option<Vec<usize>> {
         None
     }
+
+    fn last_image(&mut self) -> Result<Option<Image>> {
+        Ok(Some(self.renderer.read_image()?))
+    }
 }
 
 /// Frames from the simulated renderer: a cost model driven by the corridor-shaped load.
@@ -116,6 +123,10 @@ impl FrameSource for SimulatedSource {
 
     fn load_changes(&self, n: u32) -> Option<Vec<usize>> {
         Some(self.renderer.model().profile.changes(n as usize))
+    }
+
+    fn last_image(&mut self) -> Result<Option<Image>> {
+        Ok(None)
     }
 }
 

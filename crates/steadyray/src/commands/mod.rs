@@ -1,4 +1,6 @@
 //! One module per subcommand (`bench` has a folder of its own: `crate::bench`).
 
+pub mod calibrate;
+pub mod compare;
 pub mod render;
 pub mod scenes;

@@ -1,0 +1,271 @@
+//! `steadyray calibrate`: measures (S, R, scale) settings over sampled views of the camera
+//! path (rays, time, FLIP against a high-quality reference) and writes their Pareto front as
+//! a ladder (`ladder.json`, format in `steadyray_control::ladder`) for `predictive`'s
+//! `ladder=FILE` option.
+
+use crate::backend::create_renderer;
+use crate::bench::quality::shown;
+use crate::cli::SceneArgs;
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
+use steadyray_quality::{Rgb8Image, flip};
+use steadyray_render::{RenderSettings, Renderer};
+use steadyray_scene::Scene;
+
+#[derive(Debug, Args)]
+pub struct CalibrateArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Views of the camera path to measure, evenly spaced.
+    #[arg(long, default_value_t = 8)]
+    pub views: u32,
+    /// Frames in the camera path the views are taken from (as `bench --frames`).
+    #[arg(long, default_value_t = 720)]
+    pub frames: u32,
+    /// Full-scale image width (use the size you will bench at).
+    #[arg(long, default_value_t = 320)]
+    pub width: u32,
+    /// Full-scale image height.
+    #[arg(long, default_value_t = 180)]
+    pub height: u32,
+    /// Eye rays per pixel S to try, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16")]
+    pub spp: Vec<f32>,
+    /// Reflection depths R to try, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "0,1,2,3,4,6,8,12,16")]
+    pub depths: Vec<u32>,
+    /// Resolution scales to try, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "0.5,0.75,1")]
+    pub scales: Vec<f32>,
+    /// The reference's eye rays per pixel S (full scale). The reference setting itself is
+    /// also a point of the ladder (FLIP 0), so the ladder reaches the highest quality.
+    #[arg(long, default_value_t = 256.0)]
+    pub reference_spp: f32,
+    /// The reference's reflection depth R.
+    #[arg(long, default_value_t = 16)]
+    pub reference_depth: u32,
+    /// Where to write the ladder.
+    #[arg(short = 'o', long = "out", default_value = "ladder.json")]
+    pub out: PathBuf,
+}
+
+/// What to measure: the grid of settings, the views and the reference.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub width: u32,
+    pub height: u32,
+    pub frames: u32,
+    pub views: u32,
+    pub spp: Vec<f32>,
+    pub depths: Vec<u32>,
+    pub scales: Vec<f32>,
+    pub reference: Reference,
+}
+
+impl Plan {
+    /// The frames of the path measured: `views` evenly spaced ones.
+    fn view_frames(&self) -> Vec<u32> {
+        (0..self.views)
+            .map(|i| (u64::from(i) * u64::from(self.frames) / u64::from(self.views)) as u32)
+            .collect()
+    }
+
+    /// The settings measured (the reference's own is added by [`calibrate`]).
+    fn settings(&self) -> Vec<(f32, u32, f32)> {
+        let mut out = Vec::new();
+        for &scale in &self.scales {
+            for &spp in &self.spp {
+                for &depth in &self.depths {
+                    out.push((spp, depth, scale));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// One render's measurements.
+struct Sample {
+    rays: f64,
+    ms: f64,
+    image: Rgb8Image,
+}
+
+/// Renders `scene` from frame `k` at one setting and returns what it cost and showed.
+fn measure(
+    renderer: &mut dyn Renderer,
+    scene: &Scene,
+    plan: &Plan,
+    k: u32,
+    (spp, depth, scale): (f32, u32, f32),
+) -> Result<Sample> {
+    let camera = scene.camera_at(k, plan.frames);
+    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
+    let settings = RenderSettings {
+        width: side(plan.width),
+        height: side(plan.height),
+        spp,
+        max_depth: depth,
+    };
+    let stats = renderer
+        .render(&camera, &settings)
+        .with_context(|| format!("frame {k} at S={spp} R={depth} scale={scale}"))?;
+    let image = shown(&renderer.read_image()?, plan.width, plan.height)?;
+    Ok(Sample {
+        rays: stats.rays.total() as f64,
+        ms: stats.render_ms,
+        image,
+    })
+}
+
+/// Measures every setting of `plan` at every view against the reference and returns the
+/// ladder: the Pareto front by mean rays and mean FLIP, the reference setting on top.
+pub fn calibrate(
+    renderer: &mut dyn Renderer,
+    scene: &Scene,
+    plan: &Plan,
+    progress: &ProgressBar,
+) -> Result<Ladder> {
+    if plan.views == 0 || plan.frames == 0 {
+        bail!("--views and --frames must be at least 1");
+    }
+    let views = plan.view_frames();
+    let settings = plan.settings();
+    if settings.is_empty() {
+        bail!("no settings to measure: give --spp, --depths and --scales");
+    }
+    let r = plan.reference;
+    let mut sums = vec![(0.0, 0.0, 0.0); settings.len() + 1];
+    for &k in &views {
+        progress.set_message(format!("view {k}: reference"));
+        let reference = measure(renderer, scene, plan, k, (r.spp, r.depth, r.scale))?;
+        let top = &mut sums[settings.len()];
+        top.0 += reference.rays;
+        top.1 += reference.ms;
+        progress.set_message(format!("view {k}"));
+        for (i, &setting) in settings.iter().enumerate() {
+            let s = measure(renderer, scene, plan, k, setting)?;
+            let f = flip(&reference.image, &s.image)?.mean();
+            sums[i].0 += s.rays;
+            sums[i].1 += s.ms;
+            sums[i].2 += f;
+            progress.inc(1);
+        }
+    }
+    let n = views.len() as f64;
+    let reference_setting = (r.spp, r.depth, r.scale);
+    let measured: Vec<LadderPoint> = settings
+        .iter()
+        .chain(std::iter::once(&reference_setting))
+        .zip(&sums)
+        .map(|(&(spp, depth, scale), &(rays, ms, flip))| LadderPoint {
+            spp,
+            depth,
+            scale,
+            rays: rays / n,
+            ms: ms / n,
+            flip: flip / n,
+        })
+        .collect();
+    let ladder = Ladder {
+        scene: scene.name.clone(),
+        resolution: [plan.width, plan.height],
+        reference: r,
+        views: plan.views,
+        points: pareto_front(measured),
+    };
+    ladder.validate().map_err(anyhow::Error::msg)?;
+    Ok(ladder)
+}
+
+/// Runs the calibration, prints the front and writes the ladder.
+pub fn run(args: &CalibrateArgs) -> Result<()> {
+    let scene = steadyray_scene::load_scene(&args.scene.scene)?;
+    let mut renderer = create_renderer(args.scene.backend)?;
+    renderer.load_scene(&scene)?;
+    let plan = Plan {
+        width: args.width,
+        height: args.height,
+        frames: args.frames,
+        views: args.views,
+        spp: args.spp.clone(),
+        depths: args.depths.clone(),
+        scales: args.scales.clone(),
+        reference: Reference {
+            spp: args.reference_spp,
+            depth: args.reference_depth,
+            scale: 1.0,
+        },
+    };
+    let progress = ProgressBar::new(plan.settings().len() as u64 * u64::from(plan.views));
+    progress.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} renders, {msg} [{elapsed}]")
+            .expect("the progress template is valid"),
+    );
+    let ladder = calibrate(renderer.as_mut(), &scene, &plan, &progress)?;
+    progress.finish_and_clear();
+    println!(
+        "{:>6} {:>3} {:>6} {:>12} {:>9} {:>7}",
+        "S", "R", "scale", "rays", "ms", "flip"
+    );
+    for p in &ladder.points {
+        println!(
+            "{:>6} {:>3} {:>6} {:>12.0} {:>9.2} {:>7.4}",
+            p.spp, p.depth, p.scale, p.rays, p.ms, p.flip
+        );
+    }
+    let text = serde_json::to_string_pretty(&ladder)?;
+    std::fs::write(&args.out, text + "\n")
+        .with_context(|| format!("cannot write {}", args.out.display()))?;
+    eprintln!(
+        "calibrate: {} of {} settings on the front; wrote {}",
+        ladder.points.len(),
+        plan.settings().len() + 1,
+        args.out.display()
+    );
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use steadyray_render_cpu::CpuRenderer;
+
+    #[test]
+    fn a_tiny_corridor_gives_a_front_of_rising_cost_and_falling_flip() {
+        let scene = steadyray_scene::load_scene("corridor").unwrap();
+        let mut renderer = CpuRenderer::new();
+        renderer.load_scene(&scene).unwrap();
+        let plan = Plan {
+            width: 32,
+            height: 18,
+            frames: 8,
+            views: 2,
+            spp: vec![1.0, 2.0],
+            depths: vec![0, 1, 3],
+            scales: vec![0.5, 1.0],
+            reference: Reference {
+                spp: 8.0,
+                depth: 4,
+                scale: 1.0,
+            },
+        };
+        let ladder = calibrate(&mut renderer, &scene, &plan, &ProgressBar::hidden()).unwrap();
+        let p = &ladder.points;
+        assert!(p.len() >= 3, "{p:?}");
+        assert!(
+            p.windows(2)
+                .all(|w| w[1].rays > w[0].rays && w[1].flip < w[0].flip)
+        );
+        // The reference setting closes the front with no error at all.
+        let top = p.last().unwrap();
+        assert_eq!(
+            (top.spp, top.depth, top.scale, top.flip),
+            (8.0, 4, 1.0, 0.0)
+        );
+        assert!(p[0].flip > 0.0);
+    }
+}
