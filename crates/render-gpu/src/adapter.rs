@@ -115,6 +115,17 @@ pub(crate) fn select_adapter(
     instance: &wgpu::Instance,
     options: &GpuOptions,
 ) -> Result<wgpu::Adapter, RenderError> {
+    select_adapter_where(instance, options, "", |_| true)
+}
+
+/// As [`select_adapter`], among the adapters `keep` accepts; `requirement` names what `keep`
+/// checks (", " and a phrase, or empty) for the message when none qualifies.
+pub(crate) fn select_adapter_where(
+    instance: &wgpu::Instance,
+    options: &GpuOptions,
+    requirement: &str,
+    keep: impl Fn(&wgpu::Adapter) -> bool,
+) -> Result<wgpu::Adapter, RenderError> {
     let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::all()));
     let seen: Vec<String> = adapters
         .iter()
@@ -127,7 +138,7 @@ pub(crate) fn select_adapter(
     let best = adapters
         .into_iter()
         .map(|a| (AdapterSummary::of(&a), a))
-        .filter(|(s, _)| s.supports_compute)
+        .filter(|(s, a)| s.supports_compute && keep(a))
         .filter(|(s, _)| options.allow_software || !s.is_software)
         .filter(|(s, _)| {
             wanted
@@ -138,7 +149,7 @@ pub(crate) fn select_adapter(
     match best {
         Some((_, adapter)) => Ok(adapter),
         None => {
-            let mut why = vec!["compute shaders".to_string()];
+            let mut why = vec![format!("compute shaders{requirement}")];
             if let Some(name) = &options.adapter_name {
                 why.push(format!("name containing {name:?}"));
             }

@@ -22,8 +22,13 @@ impl GpuContext {
     pub(crate) fn new(options: &GpuOptions) -> Result<Self, RenderError> {
         let instance = new_instance();
         let adapter = select_adapter(&instance, options)?;
+        Self::open(&adapter)
+    }
+
+    /// Opens a device with its full limits on `adapter` (e.g. one chosen for a window).
+    pub(crate) fn open(adapter: &wgpu::Adapter) -> Result<Self, RenderError> {
         let info = adapter.get_info();
-        let summary = AdapterSummary::of(&adapter);
+        let summary = AdapterSummary::of(adapter);
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let required_features = if timestamps {
             wgpu::Features::TIMESTAMP_QUERY

@@ -13,7 +13,10 @@ pub mod layout;
 mod pipeline;
 mod renderer;
 mod scene_buffers;
+mod surface;
 mod timing;
 
 pub use adapter::{AdapterSummary, DeviceKind, GpuOptions, list_adapters};
 pub use renderer::GpuRenderer;
+pub use renderer::display::DisplayImage;
+pub use surface::{display_instance, surface_adapter};

@@ -14,6 +14,8 @@ use steadyray_render::{
 };
 use steadyray_scene::{Camera, Scene};
 
+pub(crate) mod display;
+
 /// What the shaders need of the loaded scene besides its buffers.
 struct LoadedScene {
     shape_count: u32,
@@ -48,7 +50,11 @@ impl GpuRenderer {
     /// Opens the adapter `options` choose and builds the pipelines. Fails with
     /// [`RenderError::Gpu`] ("no GPU adapter found (...)") when no adapter qualifies.
     pub fn new(options: &GpuOptions) -> Result<Self, RenderError> {
-        let ctx = GpuContext::new(options)?;
+        Self::from_context(GpuContext::new(options)?)
+    }
+
+    /// Builds the pipelines and buffers on an opened device.
+    fn from_context(ctx: GpuContext) -> Result<Self, RenderError> {
         let pipelines = Pipelines::new(&ctx.device)?;
         let timer = ctx
             .timestamps
@@ -93,20 +99,7 @@ impl GpuRenderer {
         let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
         let size = u64::from(width) * u64::from(height) * 4;
         let mut encoder = self.encoder("tonemap");
-        {
-            let bind_group = self.bind_group();
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("tonemap"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.pipelines.tonemap);
-            pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(
-                width.div_ceil(WORKGROUP_SIZE),
-                height.div_ceil(WORKGROUP_SIZE),
-                1,
-            );
-        }
+        self.encode_tonemap(&mut encoder, width, height);
         self.read_back(encoder, Source::Srgb8, size)
     }
 

@@ -5,6 +5,7 @@ mod bench;
 mod cli;
 mod commands;
 mod image_out;
+mod view;
 
 use clap::Parser;
 use cli::{Cli, Command};
@@ -21,6 +22,7 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Adapters => backend::print_adapters(),
+        Command::View(args) => view::run(args),
         Command::Compare(args) => commands::compare::run(args),
         Command::Calibrate(args) => commands::calibrate::run(args),
     };

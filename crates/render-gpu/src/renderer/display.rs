@@ -1,0 +1,80 @@
+//! Showing frames in a window without readback: the renderer opens its device on an adapter
+//! the window chose (so both share one device), and tone-maps each frame into its packed
+//! RGBA8 buffer, which a present pass on the same device reads directly.
+
+use super::GpuRenderer;
+use crate::device::GpuContext;
+use crate::error::scoped;
+use crate::layout::WORKGROUP_SIZE;
+use steadyray_render::RenderError;
+
+/// The last frame, tone-mapped on the GPU and left there.
+#[derive(Clone, Copy, Debug)]
+pub struct DisplayImage<'a> {
+    /// `width × height` packed RGBA8 texels (`u32`, R in the low byte, A = 255), row-major,
+    /// top row first, in sRGB: the bytes [`GpuRenderer::read_srgb8`] returns. Usable as a
+    /// read-only storage buffer; it may be larger than the image and is replaced when a
+    /// larger frame is rendered.
+    pub buffer: &'a wgpu::Buffer,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl GpuRenderer {
+    /// Opens the renderer on `adapter`, e.g. the one [`crate::surface_adapter`] chose for a
+    /// window, so that the window's present pass can share [`Self::device`].
+    pub fn with_adapter(adapter: &wgpu::Adapter) -> Result<Self, RenderError> {
+        Self::from_context(GpuContext::open(adapter)?)
+    }
+
+    /// The device the renderer runs on.
+    pub fn device(&self) -> &wgpu::Device {
+        &self.ctx.device
+    }
+
+    /// The queue the renderer submits to; work submitted to it later sees its frames.
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.ctx.queue
+    }
+
+    /// Tone-maps the last frame into its RGBA8 buffer on the GPU and returns that buffer,
+    /// without waiting: passes submitted afterwards to [`Self::queue`] read the finished
+    /// image.
+    pub fn display_image(&mut self) -> Result<DisplayImage<'_>, RenderError> {
+        let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
+        let mut encoder = self.encoder("tonemap for display");
+        self.encode_tonemap(&mut encoder, width, height);
+        let device = &self.ctx.device;
+        let commands = scoped(device, "cannot record the tone map", || encoder.finish())?;
+        scoped(device, "GPU submission failed", || {
+            self.ctx.queue.submit([commands]);
+        })?;
+        self.ctx.errors.check()?;
+        Ok(DisplayImage {
+            buffer: self.frame_buffers.srgb8.buffer(),
+            width,
+            height,
+        })
+    }
+
+    /// Records the tone-map pass of a `width × height` frame (linear image to packed RGBA8).
+    pub(super) fn encode_tonemap(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        width: u32,
+        height: u32,
+    ) {
+        let bind_group = self.bind_group();
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("tonemap"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipelines.tonemap);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups(
+            width.div_ceil(WORKGROUP_SIZE),
+            height.div_ceil(WORKGROUP_SIZE),
+            1,
+        );
+    }
+}

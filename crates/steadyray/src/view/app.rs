@@ -1,0 +1,783 @@
+//! The window and its frame loop (winit's [`ApplicationHandler`]): input to the camera, a
+//! frame at the controller's quality, its render time to the controller, the HUD, and the
+//! composited frame to the screen.
+
+use super::camera::{FlyCamera, Sweep};
+use super::capture::Screenshot;
+use super::frames::{LiveRenderer, Upload};
+use super::history::{FrameHistory, Sample, Spread};
+use super::hud::{self, HudChange, HudEdit, HudFacts};
+use super::input::{Command, InputState};
+use super::live_control::LiveControl;
+use super::playback::Recording;
+use super::screen::{Drawn, Screen, UiFrame};
+use super::{Content, LiveSetup, Plan};
+use crate::backend::ADAPTER_ENV;
+use crate::cli::BackendChoice;
+use anyhow::{Context, Result, anyhow};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+use steadyray_control::{Band, FrameReport};
+use steadyray_render::{RenderSettings, TimingSource};
+use steadyray_render_cpu::CpuRenderer;
+use steadyray_render_gpu::{GpuOptions, GpuRenderer, surface_adapter};
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, MouseButton, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow};
+use winit::keyboard::PhysicalKey;
+use winit::window::{Window, WindowId};
+
+/// The winit application: the plan until the window opens, then the running view.
+pub struct App {
+    plan: Option<Plan>,
+    instance: wgpu::Instance,
+    running: Option<Running>,
+    error: Option<anyhow::Error>,
+    summary: Option<Summary>,
+}
+
+impl App {
+    pub fn new(plan: Plan, instance: wgpu::Instance) -> Self {
+        Self {
+            plan: Some(plan),
+            instance,
+            running: None,
+            error: None,
+            summary: None,
+        }
+    }
+
+    /// After the event loop: the error that ended the view, or its summary printed as one
+    /// JSON line on stdout.
+    pub fn finish(mut self) -> Result<()> {
+        if let Some(running) = self.running.take() {
+            self.summary = Some(running.summary());
+        }
+        if let Some(error) = self.error {
+            return Err(error);
+        }
+        let summary = self
+            .summary
+            .ok_or_else(|| anyhow!("the window never opened (the event loop ended first)"))?;
+        println!("{}", serde_json::to_string(&summary)?);
+        Ok(())
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, error: anyhow::Error) {
+        self.error.get_or_insert(error);
+        event_loop.exit();
+    }
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(plan) = self.plan.take() else {
+            return;
+        };
+        event_loop.set_control_flow(ControlFlow::Poll);
+        match Running::start(event_loop, &self.instance, plan) {
+            Ok(running) => self.running = Some(running),
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(running) = self.running.as_mut() else {
+            return;
+        };
+        match running.window_event(&event) {
+            Ok(Flow::Continue) => {}
+            Ok(Flow::Exit) => event_loop.exit(),
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+        if let Some(running) = &self.running {
+            running.window.request_redraw();
+        }
+    }
+}
+
+/// Whether the view goes on after an event.
+enum Flow {
+    Continue,
+    Exit,
+}
+
+/// The live view's moving parts.
+struct Live {
+    renderer: LiveRenderer,
+    control: LiveControl,
+    camera: FlyCamera,
+    sweep: Sweep,
+    speed: f32,
+    pixel_size: u32,
+}
+
+/// Playback's moving parts.
+struct Playback {
+    recording: Recording,
+    upload: Upload,
+    /// Recording time shown, ms (stops while paused).
+    elapsed_ms: f64,
+    shown: Option<usize>,
+    /// When the shown frame first appeared.
+    shown_at: Option<Instant>,
+}
+
+impl Playback {
+    /// Plays the recording again from its first frame.
+    fn restart(&mut self) {
+        self.elapsed_ms = 0.0;
+        self.shown = None;
+        self.shown_at = None;
+    }
+}
+
+enum Mode {
+    Live(Box<Live>),
+    Playback(Box<Playback>),
+}
+
+/// What the view reports when it ends (one JSON line on stdout).
+#[derive(Debug, Serialize)]
+pub struct Summary {
+    mode: &'static str,
+    device: String,
+    timing: String,
+    present_mode: String,
+    window: [u32; 2],
+    frames: usize,
+    band_ms: [f64; 2],
+    controller: Option<&'static str>,
+    /// Render time over the whole run, ms.
+    render_ms: Option<Spread>,
+    /// Presentation interval over the whole run, ms.
+    present_ms: Option<Spread>,
+    in_band_pct: Option<f64>,
+    last_frame: [u32; 2],
+    /// The HUD's area in window pixels (x0, y0, x1, y1) on the last frame, if shown.
+    hud_rect: Option<[f32; 4]>,
+    screenshot: Option<PathBuf>,
+}
+
+/// The open window and everything drawn in it.
+struct Running {
+    window: Arc<Window>,
+    screen: Screen,
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    egui: egui::Context,
+    egui_input: egui_winit::State,
+    mode: Mode,
+    device_label: String,
+    timing: String,
+    band: Band,
+    history: FrameHistory,
+    hud_visible: bool,
+    hud_edit: HudEdit,
+    hud_rect: Option<[f32; 4]>,
+    message: Option<String>,
+    input: InputState,
+    paused: bool,
+    started: Instant,
+    last_frame: Instant,
+    last_present: Option<Instant>,
+    last_size: (u32, u32),
+    /// Every frame's render time and presentation interval, for the summary.
+    all_render_ms: Vec<f64>,
+    all_present_ms: Vec<f64>,
+    frames_limit: Option<u32>,
+    screenshot: Option<PathBuf>,
+    /// F12 was pressed: capture the next frame.
+    shot_requested: bool,
+    /// The `--frames` run is complete.
+    finished: bool,
+}
+
+/// Full-scale frame size for a window: one rendered pixel per `pixel_size` window pixels.
+fn full_size((width, height): (u32, u32), pixel_size: u32) -> (u32, u32) {
+    (
+        width.div_ceil(pixel_size).max(1),
+        height.div_ceil(pixel_size).max(1),
+    )
+}
+
+/// A frame size at resolution `scale` (the rule of `bench`: each side scaled and rounded,
+/// at least one pixel).
+fn scaled((width, height): (u32, u32), scale: f32) -> (u32, u32) {
+    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
+    (side(width), side(height))
+}
+
+/// The default pixel size: hardware GPUs render at window resolution; the CPU renderer at
+/// about 640 pixels wide and software GPUs (lavapipe) at about 160.
+fn default_pixel_size(window_width: u32, gpu: bool, software: bool) -> u32 {
+    let target = match (gpu, software) {
+        (true, false) => window_width,
+        (true, true) => 160,
+        (false, _) => 640,
+    };
+    window_width.div_ceil(target.max(1)).max(1)
+}
+
+/// Opens a device on `adapter` for the window alone (CPU rendering and playback).
+fn display_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue)> {
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("steadyray view"),
+        ..Default::default()
+    }))
+    .context("cannot open a device to show frames on")?;
+    device.on_uncaptured_error(Arc::new(|error: wgpu::Error| {
+        log::error!("GPU error outside any check: {error}");
+    }));
+    Ok((device, queue))
+}
+
+/// The live renderer `choice` asks for, with an adapter and device that can present to
+/// `surface`; says on stderr which one it picked.
+fn open_live(
+    instance: &wgpu::Instance,
+    surface: &wgpu::Surface<'_>,
+    choice: BackendChoice,
+) -> Result<(LiveRenderer, wgpu::Adapter, wgpu::Device, wgpu::Queue)> {
+    let adapter_name = std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty());
+    let gpu = |allow_software: bool| -> Result<_> {
+        let options = GpuOptions {
+            adapter_name: adapter_name.clone(),
+            allow_software,
+        };
+        let adapter = surface_adapter(instance, surface, &options)?;
+        let renderer = GpuRenderer::with_adapter(&adapter)?;
+        let (device, queue) = (renderer.device().clone(), renderer.queue().clone());
+        Ok((
+            LiveRenderer::Gpu(Box::new(renderer)),
+            adapter,
+            device,
+            queue,
+        ))
+    };
+    let cpu = || -> Result<_> {
+        let options = GpuOptions {
+            adapter_name: adapter_name.clone(),
+            allow_software: true,
+        };
+        let adapter = surface_adapter(instance, surface, &options)
+            .context("no GPU adapter (software ones included) can show frames in this window")?;
+        let (device, queue) = display_device(&adapter)?;
+        let renderer = LiveRenderer::Cpu {
+            renderer: Box::new(CpuRenderer::new()),
+            upload: Upload::new(&device),
+        };
+        Ok((renderer, adapter, device, queue))
+    };
+    match choice {
+        BackendChoice::Gpu => gpu(true).context("the gpu backend cannot render in this window"),
+        BackendChoice::Cpu => cpu(),
+        BackendChoice::Auto => gpu(false).or_else(|e| {
+            eprintln!("steadyray view: backend cpu (auto: no hardware GPU for this window: {e:#})");
+            cpu()
+        }),
+    }
+}
+
+impl Running {
+    /// Opens the window and its surface, the renderer (or recording) and the HUD.
+    fn start(event_loop: &ActiveEventLoop, instance: &wgpu::Instance, plan: Plan) -> Result<Self> {
+        let title = match &plan.content {
+            Content::Live(live) => format!("steadyray view: {}", live.scene.name),
+            Content::Playback(_) => "steadyray view: playback".to_string(),
+        };
+        let attributes = Window::default_attributes()
+            .with_title(title)
+            .with_inner_size(PhysicalSize::new(plan.window.0, plan.window.1));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .context("cannot create the window")?,
+        );
+        let surface = instance
+            .create_surface(window.clone())
+            .context("cannot create a GPU surface for the window")?;
+        let size = window.inner_size();
+        let size = (size.width, size.height);
+
+        let (mode, adapter, device, queue, device_label, timing) = match plan.content {
+            Content::Live(setup) => {
+                let LiveSetup { scene, control } = *setup;
+                let (mut renderer, adapter, device, queue) =
+                    open_live(instance, &surface, plan.backend)?;
+                renderer.load_scene(&scene)?;
+                let device_label = renderer.describe();
+                let (gpu, software, timing) = match &renderer {
+                    LiveRenderer::Gpu(r) => (
+                        true,
+                        r.adapter().is_software,
+                        if r.has_timestamps() {
+                            "GPU timestamps"
+                        } else {
+                            "GPU wall clock"
+                        },
+                    ),
+                    LiveRenderer::Cpu { .. } => (false, false, "CPU wall clock"),
+                };
+                eprintln!("steadyray view: {device_label}");
+                let live = Live {
+                    renderer,
+                    control,
+                    camera: FlyCamera::from_camera(&scene.camera),
+                    sweep: Sweep {
+                        on: plan.sweep,
+                        period_s: plan.sweep_seconds,
+                    },
+                    speed: plan.speed,
+                    pixel_size: plan
+                        .pixel_size
+                        .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
+                };
+                let mode = Mode::Live(Box::new(live));
+                (
+                    mode,
+                    adapter,
+                    device,
+                    queue,
+                    device_label,
+                    timing.to_string(),
+                )
+            }
+            Content::Playback(recording) => {
+                let options = GpuOptions {
+                    adapter_name: std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty()),
+                    allow_software: true,
+                };
+                let adapter = surface_adapter(instance, &surface, &options)
+                    .context("no GPU adapter can show frames in this window")?;
+                let (device, queue) = display_device(&adapter)?;
+                let label = format!("playback on {}", adapter.get_info().name);
+                let playback = Playback {
+                    recording,
+                    upload: Upload::new(&device),
+                    elapsed_ms: 0.0,
+                    shown: None,
+                    shown_at: None,
+                };
+                let mode = Mode::Playback(Box::new(playback));
+                (
+                    mode,
+                    adapter,
+                    device,
+                    queue,
+                    label,
+                    "recorded Tp".to_string(),
+                )
+            }
+        };
+        let screen = Screen::new(
+            surface,
+            &adapter,
+            device.clone(),
+            queue.clone(),
+            size,
+            plan.present,
+        )?;
+        let egui = egui::Context::default();
+        let egui_input = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(device.limits().max_texture_dimension_2d as usize),
+        );
+        let (controller, bounds) = match &mode {
+            Mode::Live(live) => (live.control.name(), live.control.bounds()),
+            Mode::Playback(_) => ("fixed", steadyray_control::Bounds::default()),
+        };
+        let now = Instant::now();
+        Ok(Self {
+            hud_edit: HudEdit {
+                controller,
+                tmin_ms: plan.band.tmin_ms(),
+                tmax_ms: plan.band.tmax_ms(),
+                bounds,
+                sweep: plan.sweep,
+                paused: false,
+            },
+            window,
+            screen,
+            device,
+            queue,
+            egui,
+            egui_input,
+            mode,
+            device_label,
+            timing,
+            band: plan.band,
+            history: FrameHistory::default(),
+            hud_visible: plan.hud,
+            hud_rect: None,
+            message: None,
+            input: InputState::default(),
+            paused: false,
+            started: now,
+            last_frame: now,
+            last_present: None,
+            last_size: (0, 0),
+            all_render_ms: Vec::new(),
+            all_present_ms: Vec::new(),
+            frames_limit: plan.frames,
+            screenshot: plan.screenshot,
+            shot_requested: false,
+            finished: false,
+        })
+    }
+
+    fn window_event(&mut self, event: &WindowEvent) -> Result<Flow> {
+        let egui_response = self.egui_input.on_window_event(&self.window, event);
+        match event {
+            WindowEvent::CloseRequested => return Ok(Flow::Exit),
+            WindowEvent::Resized(size) => self.screen.resize(size.width, size.height),
+            WindowEvent::RedrawRequested => return self.redraw(),
+            WindowEvent::Focused(false) => self.input.focus_lost(),
+            WindowEvent::CursorLeft { .. } => self.input.cursor_left(),
+            WindowEvent::CursorMoved { position, .. } => {
+                self.input.cursor_moved(position.x, position.y);
+            }
+            WindowEvent::MouseInput { state, button, .. } => {
+                let pressed = *state == ElementState::Pressed;
+                let look_button = matches!(button, MouseButton::Left | MouseButton::Right);
+                // A press on the HUD belongs to the HUD; a release always ends the drag.
+                if look_button && (!pressed || !egui_response.consumed) {
+                    self.input.look_button(pressed);
+                }
+            }
+            WindowEvent::KeyboardInput { event, .. } if !self.egui.egui_wants_keyboard_input() => {
+                if let PhysicalKey::Code(code) = event.physical_key
+                    && let Some(command) =
+                        self.input.key(code, event.state.is_pressed(), event.repeat)
+                {
+                    return Ok(self.command(command));
+                }
+            }
+            _ => {}
+        }
+        Ok(Flow::Continue)
+    }
+
+    fn command(&mut self, command: Command) -> Flow {
+        match command {
+            Command::ToggleHud => self.hud_visible = !self.hud_visible,
+            Command::ToggleSweep => match &mut self.mode {
+                Mode::Live(_) => self.apply(HudChange::Sweep(!self.hud_edit.sweep)),
+                Mode::Playback(p) => p.restart(),
+            },
+            Command::TogglePause => self.apply(HudChange::Pause(!self.paused)),
+            Command::Screenshot => self.shot_requested = true,
+            Command::Quit => return Flow::Exit,
+        }
+        Flow::Continue
+    }
+
+    /// Applies one HUD edit; a refused one is shown in the HUD and undone there.
+    fn apply(&mut self, change: HudChange) {
+        let result = match (&mut self.mode, change) {
+            (_, HudChange::Pause(paused)) => {
+                self.paused = paused;
+                Ok(())
+            }
+            (Mode::Live(live), HudChange::Sweep(on)) => {
+                live.sweep.on = on;
+                Ok(())
+            }
+            (Mode::Live(live), HudChange::Controller(name)) => live.control.set_controller(name),
+            (Mode::Live(live), HudChange::Band { tmin_ms, tmax_ms }) => {
+                live.control.set_band(tmin_ms, tmax_ms)
+            }
+            (Mode::Live(live), HudChange::Bounds(bounds)) => live.control.set_bounds(bounds),
+            (Mode::Playback(_), HudChange::Band { tmin_ms, tmax_ms }) => {
+                Band::new(tmin_ms, tmax_ms).map(|_| ()).map_err(Into::into)
+            }
+            (Mode::Playback(_), _) => Ok(()),
+        };
+        self.message = result.err().map(|e| format!("{e:#}"));
+        self.sync_hud();
+    }
+
+    /// Makes the HUD's controls show what is in effect.
+    fn sync_hud(&mut self) {
+        self.hud_edit.paused = self.paused;
+        match &self.mode {
+            Mode::Live(live) => {
+                self.band = live.control.band();
+                self.hud_edit.controller = live.control.name();
+                self.hud_edit.bounds = live.control.bounds();
+                self.hud_edit.sweep = live.sweep.on;
+            }
+            Mode::Playback(_) => {
+                if let Ok(band) = Band::new(self.hud_edit.tmin_ms, self.hud_edit.tmax_ms) {
+                    self.band = band;
+                }
+            }
+        }
+        self.hud_edit.tmin_ms = self.band.tmin_ms();
+        self.hud_edit.tmax_ms = self.band.tmax_ms();
+    }
+
+    /// One frame: advance, render (or pick the recorded frame), HUD, present.
+    fn redraw(&mut self) -> Result<Flow> {
+        let now = Instant::now();
+        let dt_s = now.duration_since(self.last_frame).as_secs_f32().min(0.25);
+        self.last_frame = now;
+        let t_s = now.duration_since(self.started).as_secs_f64();
+        let paused = self.paused;
+        let look = self.input.take_look();
+        let movement = self.input.movement();
+        let (image, sample, playback) = match &mut self.mode {
+            Mode::Live(live) => {
+                if !paused {
+                    live.camera.look(look);
+                    live.camera.translate(movement, live.speed * dt_s);
+                    live.sweep.advance(&mut live.camera, dt_s);
+                }
+                let q = live.control.quality();
+                let (width, height) =
+                    scaled(full_size(self.screen.size(), live.pixel_size), q.scale);
+                let settings = RenderSettings {
+                    width,
+                    height,
+                    spp: q.spp,
+                    max_depth: q.depth,
+                };
+                let stats = live.renderer.render(&live.camera.camera(), &settings)?;
+                if stats.timing == TimingSource::WallClock
+                    && self.timing.starts_with("GPU timestamps")
+                {
+                    self.timing = "GPU wall clock".into();
+                }
+                let report = FrameReport {
+                    tp_ms: stats.render_ms,
+                    rays_per_depth: stats.rays.per_depth.clone(),
+                    shadow_rays: stats.rays.shadow,
+                    pixels: settings.pixels(),
+                    quality: q,
+                };
+                if let Err(e) = live.control.observe(&report) {
+                    log::warn!("the controller refused a frame report: {e}");
+                }
+                let sample = Sample {
+                    t_s,
+                    render_ms: stats.render_ms,
+                    present_ms: None,
+                    quality: q,
+                    rays: stats.rays.total(),
+                };
+                let image = live.renderer.image(&self.device, &self.queue)?;
+                (image, Some(sample), None)
+            }
+            Mode::Playback(p) => {
+                if !paused {
+                    p.elapsed_ms += f64::from(dt_s) * 1e3;
+                }
+                let i = p.recording.frame_at(p.elapsed_ms);
+                let mut sample = None;
+                if p.shown != Some(i) {
+                    let (width, height, rgba) = p.recording.load(i)?;
+                    p.upload
+                        .write(&self.device, &self.queue, width, height, &rgba);
+                    p.shown = Some(i);
+                    // Shown on screen this long after the previous recorded frame.
+                    let interval = p
+                        .shown_at
+                        .replace(now)
+                        .map(|s| now.duration_since(s).as_secs_f64() * 1e3);
+                    sample = Some(Sample {
+                        t_s,
+                        render_ms: p.recording.frame(i).tp_ms,
+                        present_ms: interval,
+                        quality: steadyray_control::Quality::new(1.0, 0, 1.0),
+                        rays: 0,
+                    });
+                }
+                (p.upload.image(), sample, Some((i, p.recording.len())))
+            }
+        };
+        let last_size = (image.width, image.height);
+        let ui = Self::hud_frame(
+            &self.window,
+            &self.egui,
+            &mut self.egui_input,
+            HudPass {
+                visible: self.hud_visible,
+                edit: &mut self.hud_edit,
+                rect: &mut self.hud_rect,
+                facts: HudFacts {
+                    history: &self.history,
+                    band: self.band,
+                    device: &self.device_label,
+                    timing: &self.timing,
+                    frame_size: last_size,
+                    playback,
+                    message: self.message.as_deref(),
+                },
+            },
+        );
+        // The frame that completes a `--frames` run (or, in playback, shows the last
+        // recorded frame) ends the view, and is the screenshot's.
+        let at_end = playback.is_some_and(|(i, n)| i + 1 == n);
+        let ends_run = sample.is_some()
+            && self
+                .frames_limit
+                .is_some_and(|n| self.all_render_ms.len() + 1 >= n as usize || at_end);
+        let capture = self.shot_requested || (ends_run && self.screenshot.is_some());
+        let drawn = self.screen.draw(&image, ui.frame, capture)?;
+        let Drawn::Presented(shot) = drawn else {
+            return Ok(Flow::Continue);
+        };
+        self.last_size = last_size;
+        let presented = Instant::now();
+        let interval = self
+            .last_present
+            .replace(presented)
+            .map(|p| presented.duration_since(p).as_secs_f64() * 1e3);
+        if let Some(mut sample) = sample {
+            if matches!(self.mode, Mode::Live(_)) {
+                sample.present_ms = interval;
+            }
+            self.history.push(sample);
+            self.all_render_ms.push(sample.render_ms);
+            if let Some(ms) = sample.present_ms {
+                self.all_present_ms.push(ms);
+            }
+        }
+        for change in ui.changes {
+            self.apply(change);
+        }
+        if let Some(shot) = shot {
+            self.save_shot(&shot, ends_run)?;
+        }
+        self.finished = ends_run;
+        Ok(if ends_run { Flow::Exit } else { Flow::Continue })
+    }
+
+    /// Writes a captured frame: to `--screenshot` when it ends the run, else (F12) to a
+    /// time-stamped file in the current folder.
+    fn save_shot(&mut self, shot: &Screenshot, ends_run: bool) -> Result<()> {
+        let path = match &self.screenshot {
+            Some(path) if ends_run => path.clone(),
+            _ => {
+                let stamp = std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .map_or(0, |d| d.as_millis());
+                PathBuf::from(format!("steadyray-view-{stamp}.png"))
+            }
+        };
+        shot.save(&path)?;
+        eprintln!("steadyray view: screenshot written to {}", path.display());
+        self.shot_requested = false;
+        Ok(())
+    }
+
+    /// Runs egui for one frame: the HUD (if shown) and what its controls changed.
+    fn hud_frame(
+        window: &Window,
+        egui: &egui::Context,
+        egui_input: &mut egui_winit::State,
+        pass: HudPass<'_>,
+    ) -> HudOutput {
+        let HudPass {
+            visible,
+            edit,
+            rect,
+            facts,
+        } = pass;
+        let before = edit.clone();
+        let raw = egui_input.take_egui_input(window);
+        let mut area = None;
+        let output = egui.run_pass(raw, |ctx| {
+            if visible {
+                area = hud::show(ctx, edit, &facts);
+            }
+        });
+        egui_input.handle_platform_output(window, output.platform_output);
+        let ppp = output.pixels_per_point;
+        *rect = area.map(|r| [r.min.x * ppp, r.min.y * ppp, r.max.x * ppp, r.max.y * ppp]);
+        HudOutput {
+            frame: UiFrame {
+                paint_jobs: egui.tessellate(output.shapes, ppp),
+                textures: output.textures_delta,
+                pixels_per_point: ppp,
+            },
+            changes: edit.changes_since(&before),
+        }
+    }
+
+    fn summary(&self) -> Summary {
+        let (mode, controller) = match &self.mode {
+            Mode::Live(live) => ("live", Some(live.control.name())),
+            Mode::Playback(_) => ("playback", None),
+        };
+        let in_band = self
+            .all_render_ms
+            .iter()
+            .filter(|&&ms| self.band.contains(ms))
+            .count();
+        let size = self.screen.size();
+        Summary {
+            mode,
+            device: self.device_label.clone(),
+            timing: self.timing.clone(),
+            present_mode: format!("{:?}", self.screen.present_mode()),
+            window: [size.0, size.1],
+            frames: self.all_render_ms.len(),
+            band_ms: [self.band.tmin_ms(), self.band.tmax_ms()],
+            controller,
+            render_ms: Spread::of(self.all_render_ms.iter().copied()),
+            present_ms: Spread::of(self.all_present_ms.iter().copied()),
+            in_band_pct: (!self.all_render_ms.is_empty())
+                .then(|| 100.0 * in_band as f64 / self.all_render_ms.len() as f64),
+            last_frame: [self.last_size.0, self.last_size.1],
+            hud_rect: self.hud_rect,
+            screenshot: self.screenshot.clone().filter(|_| self.finished),
+        }
+    }
+}
+
+/// What one HUD pass reads and edits.
+struct HudPass<'a> {
+    visible: bool,
+    edit: &'a mut HudEdit,
+    rect: &'a mut Option<[f32; 4]>,
+    facts: HudFacts<'a>,
+}
+
+/// What one HUD pass gives back.
+struct HudOutput {
+    frame: UiFrame,
+    changes: Vec<HudChange>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_sizes_follow_the_window_and_the_scale() {
+        assert_eq!(full_size((480, 270), 3), (160, 90));
+        assert_eq!(full_size((1281, 720), 2), (641, 360));
+        assert_eq!(full_size((0, 0), 2), (1, 1));
+        assert_eq!(scaled((160, 90), 0.5), (80, 45));
+        assert_eq!(scaled((160, 90), 0.001), (1, 1));
+    }
+
+    #[test]
+    fn software_renderers_get_coarse_pixels() {
+        assert_eq!(default_pixel_size(1280, true, false), 1);
+        assert_eq!(default_pixel_size(1280, true, true), 8);
+        assert_eq!(default_pixel_size(1280, false, false), 2);
+        assert_eq!(default_pixel_size(100, false, false), 1);
+    }
+}

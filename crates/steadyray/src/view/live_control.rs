@@ -1,0 +1,179 @@
+//! The controller of the live view, switched and retuned while it runs: a new controller,
+//! band or bounds takes effect at the next frame and starts from the quality in use, so a
+//! change never jumps the image to the starting quality.
+
+use anyhow::{Result, bail};
+use steadyray_control::{
+    Band, Bounds, CONTROLLER_NAMES, Controller, FrameReport, Quality, ReportError, Setup, from_name,
+};
+
+/// The controller in use and what it was built from.
+#[derive(Debug)]
+pub struct LiveControl {
+    /// The controller named on the command line and its options; the options apply to that
+    /// controller only (others run with their defaults).
+    initial: (String, String),
+    band: Band,
+    bounds: Bounds,
+    controller: Box<dyn Controller>,
+}
+
+impl LiveControl {
+    /// Builds controller `name` with `options` over `band` and `bounds`, starting at `start`.
+    pub fn new(
+        name: &str,
+        options: &str,
+        band: Band,
+        bounds: Bounds,
+        start: Quality,
+    ) -> Result<Self> {
+        let controller = from_name(name, Setup::new(band, bounds, start)?, options)?;
+        Ok(Self {
+            initial: (name.to_string(), options.to_string()),
+            band,
+            bounds,
+            controller,
+        })
+    }
+
+    /// The controller's name.
+    pub fn name(&self) -> &'static str {
+        self.controller.name()
+    }
+
+    pub fn band(&self) -> Band {
+        self.band
+    }
+
+    pub fn bounds(&self) -> Bounds {
+        self.bounds
+    }
+
+    /// The quality of the next frame.
+    pub fn quality(&self) -> Quality {
+        self.controller.quality()
+    }
+
+    /// Shows the controller the frame just rendered.
+    pub fn observe(&mut self, report: &FrameReport) -> Result<Quality, ReportError> {
+        self.controller.observe(report)
+    }
+
+    /// Switches to controller `name` (one of [`CONTROLLER_NAMES`]), starting at the current
+    /// quality.
+    pub fn set_controller(&mut self, name: &str) -> Result<()> {
+        if !CONTROLLER_NAMES.contains(&name) {
+            bail!(
+                "unknown controller {name:?} (expected one of: {})",
+                CONTROLLER_NAMES.join(", ")
+            );
+        }
+        self.rebuild(name, self.band, self.bounds)
+    }
+
+    /// Uses the band [`tmin_ms`, `tmax_ms`] from the next frame on.
+    pub fn set_band(&mut self, tmin_ms: f64, tmax_ms: f64) -> Result<()> {
+        let band = Band::new(tmin_ms, tmax_ms)?;
+        self.rebuild(self.name(), band, self.bounds)
+    }
+
+    /// Uses `bounds` from the next frame on; the quality in use is clamped into them.
+    pub fn set_bounds(&mut self, bounds: Bounds) -> Result<()> {
+        bounds.validate()?;
+        self.rebuild(self.name(), self.band, bounds)
+    }
+
+    /// Replaces the controller; on an error nothing changes.
+    fn rebuild(&mut self, name: &str, band: Band, bounds: Bounds) -> Result<()> {
+        let start = bounds.clamp(self.quality());
+        let options = if name == self.initial.0 {
+            self.initial.1.as_str()
+        } else {
+            ""
+        };
+        self.controller = from_name(name, Setup::new(band, bounds, start)?, options)?;
+        self.band = band;
+        self.bounds = bounds;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn control(name: &str, options: &str) -> LiveControl {
+        let bounds = Bounds::default();
+        let start = Quality::new(1.0, 16, 1.0);
+        LiveControl::new(name, options, Band::PAPER, bounds, start).unwrap()
+    }
+
+    fn report(tp_ms: f64, q: Quality) -> FrameReport {
+        FrameReport {
+            tp_ms,
+            rays_per_depth: vec![10_000, 5_000],
+            shadow_rays: 8_000,
+            pixels: 10_000,
+            quality: q,
+        }
+    }
+
+    #[test]
+    fn switching_keeps_the_quality_in_use() {
+        let mut c = control("step", "");
+        let q0 = c.quality();
+        let q1 = c.observe(&report(40.0, q0)).unwrap();
+        assert!(q1.level() < q0.level(), "an overload cuts: {q0} -> {q1}");
+        c.set_controller("fixed").unwrap();
+        assert_eq!((c.name(), c.quality()), ("fixed", q1));
+        c.observe(&report(40.0, q1)).unwrap();
+        assert_eq!(c.quality(), q1, "fixed does not move");
+    }
+
+    #[test]
+    fn options_stay_with_the_controller_they_were_given_for() {
+        let mut c = control("step", "knob=spp");
+        c.set_controller("hysteresis").unwrap();
+        c.set_controller("step").unwrap();
+        assert_eq!(c.name(), "step");
+        assert!(
+            LiveControl::new(
+                "fixed",
+                "knob=spp",
+                Band::PAPER,
+                Bounds::default(),
+                Quality::new(1.0, 0, 1.0)
+            )
+            .is_err()
+        );
+    }
+
+    #[test]
+    fn bad_changes_are_refused_and_change_nothing() {
+        let mut c = control("predictive", "");
+        assert!(c.set_controller("fastest").is_err());
+        assert!(c.set_band(20.0, 15.0).is_err());
+        let bounds = Bounds {
+            spp_min: 0.5,
+            ..Bounds::default()
+        };
+        assert!(c.set_bounds(bounds).is_err());
+        assert_eq!(c.name(), "predictive");
+        assert_eq!(c.band(), Band::PAPER);
+        assert_eq!(c.bounds(), Bounds::default());
+    }
+
+    #[test]
+    fn new_bounds_and_band_apply_at_once() {
+        let mut c = control("hysteresis", "");
+        let bounds = Bounds {
+            depth_max: 4,
+            ..Bounds::default()
+        };
+        c.set_bounds(bounds).unwrap();
+        assert_eq!(c.quality().depth, 4, "clamped into the new bounds");
+        c.set_band(8.0, 12.0).unwrap();
+        assert_eq!(c.band(), Band::new(8.0, 12.0).unwrap());
+        assert_eq!(c.quality().depth, 4);
+    }
+}

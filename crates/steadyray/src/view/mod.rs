@@ -1,0 +1,280 @@
+//! `steadyray view`: the interactive window. The scene renders continuously at the quality
+//! the controller picks from each frame's render time; a HUD (egui) graphs the frame times
+//! with the band shaded and retunes the controller live. `--playback DIR` shows a recorded
+//! sequence at its real timing instead.
+//!
+//! Everything the window needs is checked before it opens (scene, controller, band, bounds,
+//! recording), and every failure after (no display, no adapter that can present, a lost
+//! surface or device) ends the view with a message and a non-zero exit, never a panic.
+
+mod app;
+mod camera;
+mod capture;
+mod frames;
+mod history;
+mod hud;
+mod input;
+mod live_control;
+mod playback;
+mod present;
+mod screen;
+
+use crate::cli::SceneArgs;
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use live_control::LiveControl;
+use playback::Recording;
+use screen::PresentChoice;
+use std::path::PathBuf;
+use steadyray_control::{Band, Bounds, Quality};
+use steadyray_scene::Scene;
+
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The controller at start (`fixed`, `step`, `hysteresis`, `predictive`), optionally
+    /// with options after a colon, e.g. `step:knob=both`. The HUD switches it live.
+    #[arg(long, default_value = "predictive")]
+    pub controller: String,
+    /// Lower edge of the frame-time band, ms.
+    #[arg(long, default_value_t = 15.0)]
+    pub tmin: f64,
+    /// Upper edge of the frame-time band, ms.
+    #[arg(long, default_value_t = 20.0)]
+    pub tmax: f64,
+    /// Window width in pixels (default 1280; in playback, the recording's frame size).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Window height in pixels (default 720; in playback, the recording's frame size).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Window pixels per rendered pixel at full resolution (default: 1 on a hardware GPU;
+    /// a full-scale frame of about 640 pixels wide on the CPU and 160 on a software GPU).
+    #[arg(long)]
+    pub pixel_size: Option<u32>,
+    /// How frames are presented.
+    #[arg(long, value_enum, default_value_t = PresentChoice::Fifo)]
+    pub present: PresentChoice,
+    /// Smallest eye rays per pixel S.
+    #[arg(long, default_value_t = 1.0)]
+    pub spp_min: f32,
+    /// Largest eye rays per pixel S.
+    #[arg(long, default_value_t = 256.0)]
+    pub spp_max: f32,
+    /// Smallest reflection depth R.
+    #[arg(long, default_value_t = 0)]
+    pub depth_min: u32,
+    /// Largest reflection depth R (the controller starts here, at the smallest S and full
+    /// resolution).
+    #[arg(long, default_value_t = 16)]
+    pub depth_max: u32,
+    /// Smallest resolution scale.
+    #[arg(long, default_value_t = 0.25)]
+    pub scale_min: f32,
+    /// Largest resolution scale.
+    #[arg(long, default_value_t = 1.0)]
+    pub scale_max: f32,
+    /// Start with the automatic sweep on (Space toggles it).
+    #[arg(long)]
+    pub sweep: bool,
+    /// Seconds per full turn of the sweep.
+    #[arg(long, default_value_t = 24.0)]
+    pub sweep_seconds: f32,
+    /// Camera speed of WASD/QE, scene units (metres) per second.
+    #[arg(long, default_value_t = 2.0)]
+    pub speed: f32,
+    /// Start with the HUD hidden (F1 toggles it).
+    #[arg(long)]
+    pub no_hud: bool,
+    /// Show this many frames, then exit (tests and CI drive the view this way).
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// With --frames: write the last frame, HUD included, to this PNG.
+    #[arg(long, requires = "frames")]
+    pub screenshot: Option<PathBuf>,
+    /// Play back a recording of `bench --record DIR` (timings.csv and frame_NNNNN.png) at
+    /// its real timing instead of rendering.
+    #[arg(long, value_name = "DIR")]
+    pub playback: Option<PathBuf>,
+}
+
+/// What the window shows.
+enum Content {
+    Live(Box<LiveSetup>),
+    Playback(Recording),
+}
+
+/// A live view's scene and controller, checked.
+struct LiveSetup {
+    scene: Scene,
+    control: LiveControl,
+}
+
+/// Everything the window needs, checked before it opens.
+struct Plan {
+    content: Content,
+    backend: crate::cli::BackendChoice,
+    window: (u32, u32),
+    pixel_size: Option<u32>,
+    present: PresentChoice,
+    band: Band,
+    sweep: bool,
+    sweep_seconds: f32,
+    speed: f32,
+    hud: bool,
+    frames: Option<u32>,
+    screenshot: Option<PathBuf>,
+}
+
+/// Default window size of the live view.
+const DEFAULT_WINDOW: (u32, u32) = (1280, 720);
+
+impl Plan {
+    fn new(args: &ViewArgs) -> Result<Self> {
+        let band = Band::new(args.tmin, args.tmax)?;
+        if args.frames == Some(0) {
+            bail!("--frames must be at least 1");
+        }
+        if let Some(path) = &args.screenshot
+            && path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase)
+                .as_deref()
+                != Some("png")
+        {
+            bail!(
+                "--screenshot {}: the screenshot is a PNG; name it .png",
+                path.display()
+            );
+        }
+        if args.pixel_size == Some(0) {
+            bail!("--pixel-size must be at least 1");
+        }
+        if !(args.sweep_seconds.is_finite() && args.sweep_seconds > 0.0) {
+            bail!("--sweep-seconds must be a positive number of seconds");
+        }
+        if !(args.speed.is_finite() && args.speed >= 0.0) {
+            bail!("--speed must be a number >= 0");
+        }
+        let (content, default_window) = match &args.playback {
+            Some(dir) => {
+                let recording = Recording::open(dir)?;
+                let (w, h, _) = recording.load(0)?;
+                (Content::Playback(recording), (w, h))
+            }
+            None => {
+                let bounds = Bounds::new(
+                    (args.spp_min, args.spp_max),
+                    (args.depth_min, args.depth_max),
+                    (args.scale_min, args.scale_max),
+                )?;
+                let start = Quality::new(bounds.spp_min, bounds.depth_max, bounds.scale_max);
+                let (name, options) = args
+                    .controller
+                    .split_once(':')
+                    .unwrap_or((&args.controller, ""));
+                let control = LiveControl::new(name.trim(), options.trim(), band, bounds, start)
+                    .with_context(|| format!("--controller {}", args.controller))?;
+                let scene = steadyray_scene::load_scene(&args.scene.scene)?;
+                (
+                    Content::Live(Box::new(LiveSetup { scene, control })),
+                    DEFAULT_WINDOW,
+                )
+            }
+        };
+        let window = (
+            args.width.unwrap_or(default_window.0),
+            args.height.unwrap_or(default_window.1),
+        );
+        if window.0 == 0 || window.1 == 0 || window.0 > 16384 || window.1 > 16384 {
+            bail!(
+                "window size {}x{} is out of range (1 to 16384 a side)",
+                window.0,
+                window.1
+            );
+        }
+        Ok(Self {
+            content,
+            backend: args.scene.backend,
+            window,
+            pixel_size: args.pixel_size,
+            present: args.present,
+            band,
+            sweep: args.sweep,
+            sweep_seconds: args.sweep_seconds,
+            speed: args.speed,
+            hud: !args.no_hud,
+            frames: args.frames,
+            screenshot: args.screenshot.clone(),
+        })
+    }
+}
+
+/// Opens the window and runs until it is closed, `--frames` are shown, or something fails.
+pub fn run(args: &ViewArgs) -> Result<()> {
+    let plan = Plan::new(args)?;
+    let event_loop = winit::event_loop::EventLoop::new().map_err(|e| {
+        anyhow::anyhow!(
+            "cannot open a window: {e} (is there a display? on a headless machine run under \
+             Xvfb, e.g. `xvfb-run steadyray view ...`)"
+        )
+    })?;
+    let instance = steadyray_render_gpu::display_instance(event_loop.owned_display_handle());
+    let mut app = app::App::new(plan, instance);
+    event_loop
+        .run_app(&mut app)
+        .context("the window's event loop failed")?;
+    app.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    fn plan(args: &[&str]) -> Result<Plan> {
+        let cli = crate::cli::Cli::try_parse_from(["steadyray", "view"].iter().chain(args))?;
+        match &cli.command {
+            crate::cli::Command::View(view) => Plan::new(view),
+            other => panic!("parsed as {other:?}"),
+        }
+    }
+
+    #[test]
+    fn bad_arguments_fail_before_a_window_opens() {
+        let cases: [(&[&str], &str); 8] = [
+            (&["--tmin", "20", "--tmax", "10"], "Tmin"),
+            (&["--controller", "fastest"], "fastest"),
+            (&["--controller", "step:bogus=1"], "bogus"),
+            (&["--frames", "0"], "--frames"),
+            (&["--frames", "3", "--screenshot", "shot.jpg"], ".png"),
+            (&["--scene", "nowhere"], "nowhere"),
+            (&["--playback", "/nonexistent/recording"], "not a folder"),
+            (&["--width", "0"], "window size"),
+        ];
+        for (args, expected) in cases {
+            let err = match plan(args) {
+                Ok(_) => panic!("{args:?} was accepted"),
+                Err(e) => format!("{e:#}"),
+            };
+            assert!(err.contains(expected), "{args:?}: {err}");
+        }
+    }
+
+    #[test]
+    fn defaults_make_a_live_view() {
+        let plan = plan(&["--controller", "step:knob=both"]).unwrap();
+        assert_eq!(plan.window, DEFAULT_WINDOW);
+        assert!(plan.hud && !plan.sweep && plan.frames.is_none());
+        match plan.content {
+            Content::Live(live) => {
+                assert_eq!(live.control.name(), "step");
+                assert_eq!(live.control.quality(), Quality::new(1.0, 16, 1.0));
+                assert_eq!(live.scene.name, "corridor");
+            }
+            Content::Playback(_) => panic!("not a playback"),
+        }
+    }
+}

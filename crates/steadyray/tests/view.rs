@@ -1,0 +1,362 @@
+//! `steadyray view` in a real window: under an Xvfb server this test starts itself, with
+//! lavapipe (or any adapter) for the GPU backend. The screenshot of the last frame must show
+//! the scene (outside the HUD, the same pixels as `steadyray render` of the same view) and
+//! the HUD (inside its area, not the plain render).
+//!
+//! Without Xvfb (or an adapter) the window tests skip loudly, unless
+//! `STEADYRAY_REQUIRE_GPU=1`, which makes them fail. The bad-input tests need neither.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
+
+fn required() -> bool {
+    std::env::var("STEADYRAY_REQUIRE_GPU").as_deref() == Ok("1")
+}
+
+/// Skips (returns) loudly, or fails when the GPU checks are required.
+macro_rules! skip {
+    ($($why:tt)*) => {{
+        let why = format!($($why)*);
+        if required() {
+            panic!("STEADYRAY_REQUIRE_GPU=1 but {why}");
+        }
+        eprintln!("SKIPPED: {why}");
+        return;
+    }};
+}
+
+/// An Xvfb server on a free display, stopped when dropped.
+struct Xvfb {
+    child: Child,
+    display: String,
+}
+
+impl Xvfb {
+    /// Starts Xvfb on the first free display from :90 up; an error says why none started.
+    fn start() -> Result<Self, String> {
+        for n in 90..140 {
+            if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+                continue;
+            }
+            let child = Command::new("Xvfb")
+                .args([
+                    &format!(":{n}"),
+                    "-screen",
+                    "0",
+                    "1024x768x24",
+                    "-nolisten",
+                    "tcp",
+                ])
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn();
+            let mut child = match child {
+                Ok(child) => child,
+                Err(e) => return Err(format!("cannot run Xvfb ({e}); install the xvfb package")),
+            };
+            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
+            let deadline = Instant::now() + Duration::from_secs(10);
+            while Instant::now() < deadline {
+                if let Ok(Some(_)) = child.try_wait() {
+                    break; // display taken by a racing server: try the next
+                }
+                if socket.exists() {
+                    return Ok(Self {
+                        child,
+                        display: format!(":{n}"),
+                    });
+                }
+                std::thread::sleep(Duration::from_millis(50));
+            }
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+        Err("no Xvfb display could be started on :90 to :139".into())
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("steadyray-view-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(display: Option<&str>, args: &[&str]) -> Output {
+    let mut command = Command::new(BIN);
+    command
+        .args(args)
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .env("RUST_LOG", "error");
+    match display {
+        Some(d) => command.env("DISPLAY", d),
+        None => command.env_remove("DISPLAY"),
+    };
+    command.output().expect("the steadyray binary runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn rgba(path: &Path) -> image::RgbaImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+        .into_rgba8()
+}
+
+/// The window: 640x360 pixels; the frame: 160x90 at full scale (4x4 window pixels each).
+const WINDOW: (u32, u32) = (640, 360);
+const PIXEL: u32 = 4;
+
+/// Runs `view --frames 30 --screenshot` on `backend` and checks the screenshot against a
+/// `render` of the same view.
+fn window_matches_render(backend: &str) {
+    let xvfb = match Xvfb::start() {
+        Ok(x) => x,
+        Err(why) => skip!("no X server for the window test: {why}"),
+    };
+    let dir = scratch(backend);
+    let shot = dir.join("view.png");
+    let reference = dir.join("render.png");
+    let (w, h) = (WINDOW.0.to_string(), WINDOW.1.to_string());
+    let pixel = PIXEL.to_string();
+    let view = run(
+        Some(&xvfb.display),
+        &[
+            "view",
+            "--scene",
+            "corridor",
+            "--backend",
+            backend,
+            "--controller",
+            "fixed",
+            "--spp-min",
+            "1",
+            "--depth-max",
+            "6",
+            "--width",
+            &w,
+            "--height",
+            &h,
+            "--pixel-size",
+            &pixel,
+            "--frames",
+            "30",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+    );
+    let stderr = text(&view.stderr);
+    assert!(!stderr.contains("panicked"), "the view panicked:\n{stderr}");
+    if !view.status.success() && backend == "gpu" && stderr.contains("no GPU adapter") {
+        skip!("no GPU adapter for the window: {stderr}");
+    }
+    assert!(
+        view.status.success(),
+        "view failed ({}):\n{stderr}",
+        view.status
+    );
+    let summary: Value = serde_json::from_str(text(&view.stdout).trim())
+        .unwrap_or_else(|e| panic!("no JSON summary ({e}):\n{}", text(&view.stdout)));
+    assert_eq!(summary["frames"], 30, "{summary}");
+    assert_eq!(
+        summary["last_frame"],
+        serde_json::json!([160, 90]),
+        "{summary}"
+    );
+    assert_eq!(
+        summary["window"],
+        serde_json::json!([WINDOW.0, WINDOW.1]),
+        "{summary}"
+    );
+    assert!(
+        summary["render_ms"]["mean"].as_f64().unwrap() > 0.0,
+        "{summary}"
+    );
+    assert!(
+        summary["present_ms"]["mean"].as_f64().unwrap() > 0.0,
+        "{summary}"
+    );
+
+    let render = run(
+        None,
+        &[
+            "render",
+            "--scene",
+            "corridor",
+            "--backend",
+            backend,
+            "--width",
+            "160",
+            "--height",
+            "90",
+            "--spp",
+            "1",
+            "--depth",
+            "6",
+            "-o",
+            reference.to_str().unwrap(),
+        ],
+    );
+    assert!(
+        render.status.success(),
+        "render failed:\n{}",
+        text(&render.stderr)
+    );
+
+    let shot = rgba(&shot);
+    let reference = rgba(&reference);
+    assert_eq!(shot.dimensions(), WINDOW);
+    let hud: Vec<f64> = summary["hud_rect"]
+        .as_array()
+        .expect("the HUD was shown")
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    // Window pixels inside the HUD (with a margin for its shadow).
+    let in_hud = |x: u32, y: u32| {
+        let (x, y) = (f64::from(x), f64::from(y));
+        x >= hud[0] - 16.0 && x < hud[2] + 16.0 && y >= hud[1] - 16.0 && y < hud[3] + 16.0
+    };
+    let (mut outside, mut outside_bad, mut outside_err) = (0u64, 0u64, 0u64);
+    let (mut inside, mut inside_err) = (0u64, 0u64);
+    for y in 0..WINDOW.1 {
+        for x in 0..WINDOW.0 {
+            let a = shot.get_pixel(x, y).0;
+            let b = reference.get_pixel(x / PIXEL, y / PIXEL).0;
+            let err = (0..3).map(|c| a[c].abs_diff(b[c]) as u64).max().unwrap();
+            if in_hud(x, y) {
+                inside += 1;
+                inside_err += err;
+            } else {
+                outside += 1;
+                outside_err += err;
+                outside_bad += u64::from(err > 2);
+            }
+        }
+    }
+    assert!(
+        outside > 50_000,
+        "too little of the frame is outside the HUD: {hud:?}"
+    );
+    let bad_share = outside_bad as f64 / outside as f64;
+    let mean_err = outside_err as f64 / outside as f64;
+    eprintln!(
+        "{backend}: outside the HUD {outside} px, {:.3} % off by more than 2 levels, mean error \
+         {mean_err:.3}; inside the HUD mean difference {:.1}",
+        bad_share * 100.0,
+        inside_err as f64 / inside as f64
+    );
+    assert!(
+        bad_share < 0.005 && mean_err < 0.1,
+        "the frame differs from the render"
+    );
+    assert!(
+        inside_err as f64 / inside as f64 > 10.0,
+        "the HUD's area looks like the plain render: no HUD drawn?"
+    );
+}
+
+#[test]
+fn gpu_window_shows_the_scene_and_the_hud() {
+    window_matches_render("gpu");
+}
+
+#[test]
+fn cpu_window_shows_the_scene_and_the_hud() {
+    window_matches_render("cpu");
+}
+
+#[test]
+fn playback_shows_recorded_frames() {
+    let xvfb = match Xvfb::start() {
+        Ok(x) => x,
+        Err(why) => skip!("no X server for the playback test: {why}"),
+    };
+    let dir = scratch("playback");
+    let recording = dir.join("recording");
+    std::fs::create_dir_all(&recording).unwrap();
+    let mut csv = String::from("frame,presented_ms,tp_ms\n");
+    for i in 0..4u8 {
+        csv.push_str(&format!("{i},{},{}\n", u32::from(i) * 40, 10 + i));
+        let colour = [60 * i, 200 - 40 * i, 90, 255];
+        let frame = image::RgbaImage::from_pixel(80, 45, image::Rgba(colour));
+        frame
+            .save(recording.join(format!("frame_{i:05}.png")))
+            .unwrap();
+    }
+    std::fs::write(recording.join("timings.csv"), csv).unwrap();
+    let shot = dir.join("playback.png");
+    let started = Instant::now();
+    let out = run(
+        Some(&xvfb.display),
+        &[
+            "view",
+            "--playback",
+            recording.to_str().unwrap(),
+            "--width",
+            "640",
+            "--height",
+            "360",
+            "--frames",
+            "4",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+    );
+    let stderr = text(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    if !out.status.success() && stderr.contains("no GPU adapter") {
+        skip!("no GPU adapter for the window: {stderr}");
+    }
+    assert!(out.status.success(), "playback failed:\n{stderr}");
+    assert!(
+        started.elapsed() >= Duration::from_millis(120),
+        "4 frames 40 ms apart took {:?}",
+        started.elapsed()
+    );
+    let summary: Value = serde_json::from_str(text(&out.stdout).trim()).unwrap();
+    assert_eq!(summary["mode"], "playback");
+    assert_eq!(summary["frames"], 4);
+    // The last frame (i = 3) fills the window outside the HUD.
+    let shot = rgba(&shot);
+    assert_eq!(shot.get_pixel(630, 350).0, [180, 80, 90, 255]);
+}
+
+#[test]
+fn no_display_is_a_clean_error() {
+    let out = run(None, &["view", "--frames", "1"]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("cannot open a window"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn a_broken_recording_is_a_clean_error() {
+    let dir = scratch("broken");
+    std::fs::write(dir.join("timings.csv"), "frame,presented_ms,tp_ms\n0,0,5\n").unwrap();
+    let out = run(None, &["view", "--playback", dir.to_str().unwrap()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("frame_00000.png is missing"), "{stderr}");
+    let out = run(
+        None,
+        &["view", "--playback", dir.join("nothing").to_str().unwrap()],
+    );
+    assert!(text(&out.stderr).contains("is not a folder"));
+}
