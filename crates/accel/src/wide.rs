@@ -5,6 +5,7 @@
 
 use crate::watertight::{T_MIN, TriangleVerts, WatertightRay};
 use glam::Vec3A;
+use std::mem::MaybeUninit;
 
 /// Set in [`Node4::child`] for a leaf: bits 27..31 hold the triangle count (1..=15), bits
 /// 0..27 the leaf-order position of its first triangle.
@@ -73,23 +74,26 @@ impl BoxRay {
     /// on [0, t_max].
     #[inline(always)]
     fn test(&self, node: &Node4, t_max: f32) -> ([f32; 4], [bool; 4]) {
-        let mut t_near = [0.0f32; 4];
+        let mut near = [0.0f32; 4];
+        let mut far = [f32::INFINITY; 4];
+        for axis in 0..3 {
+            let lo = &node.bounds[self.near[axis]];
+            let hi = &node.bounds[self.far[axis]];
+            let (o, inv) = (self.origin[axis], self.inv[axis]);
+            for lane in 0..4 {
+                let n = (lo[lane] - o) * inv;
+                let f = (hi[lane] - o) * inv;
+                // Written as comparisons so that a NaN bound leaves the interval unchanged.
+                near[lane] = if n > near[lane] { n } else { near[lane] };
+                far[lane] = if f < far[lane] { f } else { far[lane] };
+            }
+        }
         let mut hit = [false; 4];
         for lane in 0..4 {
-            let mut near = 0.0f32;
-            let mut far = f32::INFINITY;
-            for axis in 0..3 {
-                let n = (node.bounds[self.near[axis]][lane] - self.origin[axis]) * self.inv[axis];
-                let f = (node.bounds[self.far[axis]][lane] - self.origin[axis]) * self.inv[axis];
-                // Written as comparisons so that a NaN bound leaves the interval unchanged.
-                near = if n > near { n } else { near };
-                far = if f < far { f } else { far };
-            }
-            let near = near * NEAR_SCALE;
-            t_near[lane] = near;
-            hit[lane] = near <= (far * FAR_SCALE).min(t_max);
+            near[lane] *= NEAR_SCALE;
+            hit[lane] = near[lane] <= (far[lane] * FAR_SCALE).min(t_max);
         }
-        (t_near, hit)
+        (near, hit)
     }
 }
 
@@ -115,7 +119,8 @@ impl Wide {
         // Ties with the incoming t_max are not hits (id < 0 never holds).
         let mut best_id = 0u32;
         let mut found = false;
-        let mut stack = [(0u32, 0.0f32); STACK_SIZE];
+        // Uninitialised: zeroing it would cost as much as a short traversal.
+        let mut stack = [MaybeUninit::<(u32, f32)>::uninit(); STACK_SIZE];
         let mut sp = 0usize;
         let mut cur = 0u32;
         loop {
@@ -140,7 +145,7 @@ impl Wide {
                         }
                     }
                     for &(d, c) in &order[..n - 1] {
-                        stack[sp] = (c, d);
+                        stack[sp].write((c, d));
                         sp += 1;
                     }
                     cur = order[n - 1].1;
@@ -165,7 +170,8 @@ impl Wide {
                     return found.then_some((best_t, best_id));
                 }
                 sp -= 1;
-                let (c, d) = stack[sp];
+                // SAFETY: entries below `sp` were all written by the pushes above.
+                let (c, d) = unsafe { stack[sp].assume_init() };
                 if d <= best_t {
                     cur = c;
                     break;
@@ -182,7 +188,7 @@ impl Wide {
         }
         let wr = WatertightRay::new(origin, dir);
         let br = BoxRay::new(origin, dir);
-        let mut stack = [0u32; STACK_SIZE];
+        let mut stack = [MaybeUninit::<u32>::uninit(); STACK_SIZE];
         let mut sp = 0usize;
         let mut cur = 0u32;
         loop {
@@ -191,7 +197,7 @@ impl Wide {
                 let (_, hit) = br.test(node, t_max);
                 for (&h, &child) in hit.iter().zip(&node.child) {
                     if h {
-                        stack[sp] = child;
+                        stack[sp].write(child);
                         sp += 1;
                     }
                 }
@@ -209,7 +215,8 @@ impl Wide {
                 return false;
             }
             sp -= 1;
-            cur = stack[sp];
+            // SAFETY: entries below `sp` were all written by the pushes above.
+            cur = unsafe { stack[sp].assume_init() };
         }
     }
 }

@@ -6,6 +6,13 @@
 use bytemuck::{Pod, Zeroable};
 use steadyray_render::MAX_DEPTH;
 
+/// A node of the triangle BVH (WGSL `BvhNode`): the flattened binary layout of
+/// `steadyray-accel`, uploaded as built.
+pub use steadyray_accel::FlatNode as GpuBvhNode;
+
+/// Entries of the WGSL BVH traversal stack: the deepest tree the build accepts.
+pub const BVH_STACK_SIZE: u32 = steadyray_accel::FLAT_STACK_SIZE as u32;
+
 /// Workgroups are `WORKGROUP_SIZE` × `WORKGROUP_SIZE` threads, one thread per pixel.
 pub const WORKGROUP_SIZE: u32 = 8;
 /// Ray counters per workgroup at most: depths 0..=MAX_DEPTH, then shadow rays, then the
@@ -85,14 +92,16 @@ pub struct GpuShape {
 }
 
 /// A mesh triangle in world space (WGSL `Triangle`) with its normal
-/// normalize((v1 - v0) × (v2 - v0)).
+/// normalize((v1 - v0) × (v2 - v0)). The buffer holds them in BVH leaf order; `id` is the
+/// triangle's index in scene order (all meshes' triangles in object order), which breaks
+/// ties between hits at the same t as the CPU reference does (lowest index wins).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {
     pub v0: [f32; 3],
     pub material: u32,
     pub v1: [f32; 3],
-    pub pad0: u32,
+    pub id: u32,
     pub v2: [f32; 3],
     pub pad1: u32,
     pub normal: [f32; 3],
@@ -212,11 +221,24 @@ mod tests {
                     v0,
                     material,
                     v1,
-                    pad0,
+                    id,
                     v2,
                     pad1,
                     normal,
                     pad2
+                }),
+            ),
+            (
+                "BvhNode",
+                rust_layout!(GpuBvhNode {
+                    left_min,
+                    left_first,
+                    left_max,
+                    left_count,
+                    right_min,
+                    right_first,
+                    right_max,
+                    right_count
                 }),
             ),
             (
@@ -272,6 +294,7 @@ mod tests {
             ("MAX_DEPTH", MAX_DEPTH),
             ("COUNTER_SLOTS", COUNTER_SLOTS),
             ("REDUCE_SIZE", REDUCE_SIZE),
+            ("BVH_STACK_SIZE", BVH_STACK_SIZE),
             ("SHAPE_SPHERE", SHAPE_SPHERE),
             ("SHAPE_QUAD", SHAPE_QUAD),
             ("SHAPE_PLANE", SHAPE_PLANE),

@@ -26,6 +26,7 @@ pub(crate) mod binding {
     pub const GROUP_COUNTS: u32 = 6;
     pub const TOTALS: u32 = 7;
     pub const SRGB8: u32 = 8;
+    pub const BVH_NODES: u32 = 9;
 }
 
 /// The three entry points of [`SHADER_SOURCE`] over one bind group layout.
@@ -69,6 +70,7 @@ impl Pipelines {
                 layout_entry(GROUP_COUNTS, write),
                 layout_entry(TOTALS, write),
                 layout_entry(SRGB8, write),
+                layout_entry(BVH_NODES, read),
             ],
         });
         let module = shader_module(device, SHADER_SOURCE)?;

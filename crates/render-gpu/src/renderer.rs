@@ -134,6 +134,7 @@ impl GpuRenderer {
                         entry(binding::GROUP_COUNTS, f.group_counts.buffer()),
                         entry(binding::TOTALS, &f.totals),
                         entry(binding::SRGB8, f.srgb8.buffer()),
+                        entry(binding::BVH_NODES, s.bvh_nodes.buffer()),
                     ],
                 })
         });

@@ -7,11 +7,13 @@ use steadyray_render::RenderError;
 use steadyray_scene::{Material, Scene, Shape};
 
 /// A scene flattened into the structs of [`crate::layout`]: spheres, quads and planes, each
-/// kind in object order, and every mesh's triangles in object order.
+/// kind in object order, and every mesh's triangles in the leaf order of their BVH (each
+/// with its index in object order as `id`).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct PackedScene {
     pub(crate) shapes: Vec<GpuShape>,
     pub(crate) triangles: Vec<GpuTriangle>,
+    pub(crate) bvh_nodes: Vec<GpuBvhNode>,
     pub(crate) materials: Vec<GpuMaterial>,
     pub(crate) lights: Vec<GpuLight>,
     pub(crate) ambient: f32,
@@ -190,7 +192,31 @@ impl PackedScene {
         // Closest-hit ties go to the first primitive tested: test spheres, quads, planes in
         // that order, as the CPU reference does.
         packed.shapes.sort_by_key(|s| s.kind);
+        packed
+            .order_triangles_for_bvh()
+            .map_err(|e| bad(format!("meshes: {e}")))?;
         Ok(packed)
+    }
+
+    /// Builds the BVH over the triangles (in object order), numbers them by that order and
+    /// puts them in the BVH's leaf order.
+    fn order_triangles_for_bvh(&mut self) -> Result<(), steadyray_accel::BvhError> {
+        let corners: Vec<[Vec3; 3]> = self
+            .triangles
+            .iter()
+            .map(|t| [t.v0, t.v1, t.v2].map(Vec3::from))
+            .collect();
+        let bvh = steadyray_accel::Bvh::build(&corners)?;
+        self.triangles = bvh
+            .leaf_order()
+            .iter()
+            .map(|&i| GpuTriangle {
+                id: i,
+                ..self.triangles[i as usize]
+            })
+            .collect();
+        self.bvh_nodes = bvh.flat_nodes().to_vec();
+        Ok(())
     }
 }
 
@@ -198,6 +224,7 @@ impl PackedScene {
 pub(crate) struct SceneBuffers {
     pub(crate) shapes: GrowBuffer,
     pub(crate) triangles: GrowBuffer,
+    pub(crate) bvh_nodes: GrowBuffer,
     pub(crate) materials: GrowBuffer,
     pub(crate) lights: GrowBuffer,
 }
@@ -209,6 +236,7 @@ impl SceneBuffers {
         Self {
             shapes: buffer("shapes"),
             triangles: buffer("triangles"),
+            bvh_nodes: buffer("bvh nodes"),
             materials: buffer("materials"),
             lights: buffer("lights"),
         }
@@ -226,6 +254,8 @@ impl SceneBuffers {
                 .write(device, queue, bytemuck::cast_slice(&scene.shapes)),
             self.triangles
                 .write(device, queue, bytemuck::cast_slice(&scene.triangles)),
+            self.bvh_nodes
+                .write(device, queue, bytemuck::cast_slice(&scene.bvh_nodes)),
             self.materials
                 .write(device, queue, bytemuck::cast_slice(&scene.materials)),
             self.lights

@@ -336,3 +336,41 @@ fn teapot() {
     }]);
     check_parity("teapot", &scene, &scene.camera, (64, 48), &[(1.0, 2)]);
 }
+
+/// The Stanford bunny (69,451 triangles, through the BVH) standing in the Cornell box,
+/// seen in the box's mirror and glass spheres too.
+#[test]
+fn bunny_in_the_cornell_box() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/meshes/stanford-bunny.obj"
+    );
+    if !std::path::Path::new(path).exists() {
+        eprintln!("SKIPPED: {path} not found");
+        return;
+    }
+    let mut scene = builtin("cornell").unwrap();
+    let white = scene
+        .materials
+        .iter()
+        .position(|(name, _)| name == "white")
+        .unwrap();
+    let transform = MeshTransform {
+        translate: Vec3::new(0.1, -0.2, 0.2),
+        scale: Vec3::splat(6.0),
+        rotate_y_deg: 20.0,
+    };
+    let bunny = import_mesh(path.as_ref(), &transform).unwrap().mesh;
+    scene.objects.push(Object {
+        name: "bunny".into(),
+        shape: Shape::Mesh(bunny),
+        material: white,
+    });
+    check_parity(
+        "bunny in the Cornell box",
+        &scene,
+        &scene.camera,
+        (64, 48),
+        &[(1.0, 4), (2.5, 3)],
+    );
+}

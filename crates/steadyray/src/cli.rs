@@ -23,14 +23,17 @@ pub enum Command {
     Scenes,
     /// List the GPU adapters wgpu can see.
     Adapters,
-    /// Open an interactive window: the scene rendered continuously at the controller's
-    /// quality, with a live frame-time HUD (or play back a recording with --playback).
-    View(crate::view::ViewArgs),
     /// Compare two images (FLIP, PSNR, SSIM) and print them as one JSON line.
     Compare(crate::commands::compare::CompareArgs),
     /// Measure (S, R, scale) settings' cost and FLIP over views of the camera path and write
     /// the Pareto front as a ladder for `predictive:ladder=FILE`.
     Calibrate(crate::commands::calibrate::CalibrateArgs),
+    /// Open an interactive window: the scene rendered continuously at the controller's
+    /// quality, with a live frame-time HUD (or play back a recording with --playback).
+    View(crate::view::ViewArgs),
+    /// Ray-casting throughput of the triangle BVH on a mesh: primary and diffuse-bounce rays
+    /// per second, as one JSON line.
+    Raybench(crate::commands::raybench::RaybenchArgs),
 }
 
 /// Which renderer backend to use.

@@ -22,9 +22,10 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Adapters => backend::print_adapters(),
-        Command::View(args) => view::run(args),
         Command::Compare(args) => commands::compare::run(args),
         Command::Calibrate(args) => commands::calibrate::run(args),
+        Command::View(args) => view::run(args),
+        Command::Raybench(args) => commands::raybench::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,7 +1,8 @@
 // Ray-primitive intersection and the two scene queries (closest hit, any hit), written as
 // the CPU reference (crates/render-cpu) writes them so that both round alike. Rays hit on
-// t in (T_MIN, t_max). The queries loop over every primitive; an acceleration structure
-// replaces the loops without touching their callers.
+// t in (T_MIN, t_max). The queries loop over the analytic shapes and traverse the triangle
+// BVH (bvh_nodes); like the CPU's, its box tests are widened so that it finds exactly the
+// hits of a loop over all triangles, and ties at the same t go to the lowest triangle id.
 
 const T_MIN: f32 = 1e-4;
 const EPS: f32 = 1e-4;
@@ -145,10 +146,49 @@ fn hit_triangle(tri: Triangle, origin: vec3<f32>, sh: Shear, t_max: f32) -> f32 
 }
 
 // The nearest hit: its distance (NO_HIT for a miss) and primitive id (shapes first, then
-// triangles at shape_count + i).
+// triangles at shape_count + their leaf-order index).
 struct Hit {
     t: f32,
     prim: u32,
+}
+
+// A BVH child reference: an inner node index, or LEAF_BIT | count << 27 | first.
+const LEAF_BIT: u32 = 0x80000000u;
+// Box tests widen the entry and exit distances by 2^-20 relative, as the CPU's do.
+const BOX_NEAR_SCALE: f32 = 0.99999904632568359375;
+const BOX_FAR_SCALE: f32 = 1.00000095367431640625;
+// A box the ray misses has this entry distance (above NO_HIT).
+const BOX_MISS: f32 = 3.4e38;
+
+fn child_ref(first: u32, count: u32) -> u32 {
+    return select(first, LEAF_BIT | (count << 27u) | first, count > 0u);
+}
+
+// A ray prepared for box tests. Zero direction components take no division: such a ray
+// lies in that axis' slab for every t when its origin is inside it (bounds included), and
+// for none otherwise.
+struct BoxRay {
+    origin: vec3<f32>,
+    inv: vec3<f32>,
+    flat: vec3<bool>,
+}
+
+fn make_box_ray(ray: Ray) -> BoxRay {
+    let flat = ray.dir == vec3<f32>(0.0);
+    return BoxRay(ray.origin, 1.0 / select(ray.dir, vec3<f32>(1.0), flat), flat);
+}
+
+// The widened entry distance of the box [lo, hi] when the ray meets it on [0, t_max],
+// else BOX_MISS.
+fn box_entry(lo: vec3<f32>, hi: vec3<f32>, br: BoxRay, t_max: f32) -> f32 {
+    let a = (lo - br.origin) * br.inv;
+    let b = (hi - br.origin) * br.inv;
+    let inside = br.origin >= lo & br.origin <= hi;
+    let t0 = select(min(a, b), select(vec3<f32>(BOX_MISS), vec3<f32>(-BOX_MISS), inside), br.flat);
+    let t1 = select(max(a, b), select(vec3<f32>(-BOX_MISS), vec3<f32>(BOX_MISS), inside), br.flat);
+    let near = max(max(t0.x, t0.y), max(t0.z, 0.0)) * BOX_NEAR_SCALE;
+    let far = min(min(t1.x, t1.y), t1.z) * BOX_FAR_SCALE;
+    return select(BOX_MISS, near, near <= min(far, t_max));
 }
 
 fn closest_hit(ray: Ray) -> Hit {
@@ -159,13 +199,65 @@ fn closest_hit(ray: Ray) -> Hit {
             hit = Hit(t, i);
         }
     }
-    if frame.triangle_count > 0u {
-        let sh = make_shear(ray.dir);
-        for (var i = 0u; i < frame.triangle_count; i++) {
-            let t = hit_triangle(triangles[i], ray.origin, sh, hit.t);
-            if t < hit.t {
-                hit = Hit(t, frame.shape_count + i);
+    if frame.triangle_count == 0u {
+        return hit;
+    }
+    let sh = make_shear(ray.dir);
+    let br = make_box_ray(ray);
+    // The id of the best triangle so far; 0 lets no triangle tie a shape's hit.
+    var best_id = 0u;
+    var stack_ref: array<u32, BVH_STACK_SIZE>;
+    var stack_t: array<f32, BVH_STACK_SIZE>;
+    var sp = 0u;
+    var cur = 0u;
+    loop {
+        if (cur & LEAF_BIT) == 0u {
+            let node = bvh_nodes[cur];
+            let tl = box_entry(node.left_min, node.left_max, br, hit.t);
+            let tr = box_entry(node.right_min, node.right_max, br, hit.t);
+            let rl = child_ref(node.left_first, node.left_count);
+            let rr = child_ref(node.right_first, node.right_count);
+            if tl != BOX_MISS && tr != BOX_MISS {
+                // Nearer child first; the other waits on the stack with its entry distance.
+                let left_first = tl <= tr;
+                stack_ref[sp] = select(rl, rr, left_first);
+                stack_t[sp] = select(tl, tr, left_first);
+                sp++;
+                cur = select(rr, rl, left_first);
+                continue;
             }
+            if tl != BOX_MISS {
+                cur = rl;
+                continue;
+            }
+            if tr != BOX_MISS {
+                cur = rr;
+                continue;
+            }
+        } else {
+            let first = cur & 0x07ffffffu;
+            let end = first + ((cur >> 27u) & 0xfu);
+            for (var k = first; k < end; k++) {
+                let tri = triangles[k];
+                let t = hit_triangle(tri, ray.origin, sh, NO_HIT);
+                if t < hit.t || (t == hit.t && tri.id < best_id) {
+                    hit = Hit(t, frame.shape_count + k);
+                    best_id = tri.id;
+                }
+            }
+        }
+        // Pop the next pending child that can still hold a closer hit.
+        var found = false;
+        while sp > 0u {
+            sp--;
+            if stack_t[sp] <= hit.t {
+                cur = stack_ref[sp];
+                found = true;
+                break;
+            }
+        }
+        if !found {
+            break;
         }
     }
     return hit;
@@ -178,13 +270,49 @@ fn occluded(ray: Ray, t_max: f32) -> bool {
             return true;
         }
     }
-    if frame.triangle_count > 0u {
-        let sh = make_shear(ray.dir);
-        for (var i = 0u; i < frame.triangle_count; i++) {
-            if hit_triangle(triangles[i], ray.origin, sh, t_max) < t_max {
-                return true;
+    if frame.triangle_count == 0u {
+        return false;
+    }
+    let sh = make_shear(ray.dir);
+    let br = make_box_ray(ray);
+    var stack_ref: array<u32, BVH_STACK_SIZE>;
+    var sp = 0u;
+    var cur = 0u;
+    loop {
+        if (cur & LEAF_BIT) == 0u {
+            let node = bvh_nodes[cur];
+            let hit_l = box_entry(node.left_min, node.left_max, br, t_max) != BOX_MISS;
+            let hit_r = box_entry(node.right_min, node.right_max, br, t_max) != BOX_MISS;
+            let rl = child_ref(node.left_first, node.left_count);
+            let rr = child_ref(node.right_first, node.right_count);
+            if hit_l && hit_r {
+                stack_ref[sp] = rr;
+                sp++;
+                cur = rl;
+                continue;
+            }
+            if hit_l {
+                cur = rl;
+                continue;
+            }
+            if hit_r {
+                cur = rr;
+                continue;
+            }
+        } else {
+            let first = cur & 0x07ffffffu;
+            let end = first + ((cur >> 27u) & 0xfu);
+            for (var k = first; k < end; k++) {
+                if hit_triangle(triangles[k], ray.origin, sh, t_max) < t_max {
+                    return true;
+                }
             }
         }
+        if sp == 0u {
+            return false;
+        }
+        sp--;
+        cur = stack_ref[sp];
     }
     return false;
 }

@@ -9,6 +9,8 @@ const MAX_DEPTH: u32 = 64u;
 const COUNTER_SLOTS: u32 = 67u;
 // Threads of the ray-count reduction.
 const REDUCE_SIZE: u32 = 256u;
+// Entries of the BVH traversal stack (steadyray_accel::FLAT_STACK_SIZE).
+const BVH_STACK_SIZE: u32 = 64u;
 
 const SHAPE_SPHERE: u32 = 0u;
 const SHAPE_QUAD: u32 = 1u;
@@ -55,16 +57,31 @@ struct Shape {
     s1: f32,
 }
 
-// A mesh triangle in world space with its normal normalize((v1 - v0) × (v2 - v0)).
+// A mesh triangle in world space with its normal normalize((v1 - v0) × (v2 - v0)), in BVH
+// leaf order; id is its index in scene order (the tie-break among hits at the same t).
 struct Triangle {
     v0: vec3<f32>,
     material: u32,
     v1: vec3<f32>,
-    pad0: u32,
+    id: u32,
     v2: vec3<f32>,
     pad1: u32,
     normal: vec3<f32>,
     pad2: u32,
+}
+
+// A node of the triangle BVH (GpuBvhNode, steadyray_accel::FlatNode): both children's
+// boxes; a child is an inner node (count 0, first its index) or a leaf of count triangles
+// starting at first. Node 0 is the root.
+struct BvhNode {
+    left_min: vec3<f32>,
+    left_first: u32,
+    left_max: vec3<f32>,
+    left_count: u32,
+    right_min: vec3<f32>,
+    right_first: u32,
+    right_max: vec3<f32>,
+    right_count: u32,
 }
 
 // colour: albedo, reflectance, tint or radiance by kind; colour_b and checker_size > 0 for a
@@ -100,3 +117,5 @@ struct Light {
 @group(0) @binding(7) var<storage, read_write> totals: array<vec2<u32>>;
 // The tone-mapped image, one packed RGBA8 (R in the low byte) per pixel.
 @group(0) @binding(8) var<storage, read_write> srgb8: array<u32>;
+// The triangle BVH over `triangles` (empty when there are none).
+@group(0) @binding(9) var<storage, read> bvh_nodes: array<BvhNode>;

@@ -2,5 +2,6 @@
 
 pub mod calibrate;
 pub mod compare;
+pub mod raybench;
 pub mod render;
 pub mod scenes;

@@ -1,0 +1,266 @@
+//! `steadyray raybench`: ray-casting throughput of the triangle BVH alone, without shading.
+//!
+//! One primary ray through each pixel centre (the pixel convention of `spec/corridor.md`),
+//! then one cosine-weighted diffuse bounce ray from each primary hit (seeded, so every run
+//! traces the same rays). Both sets are traced `--reps` times for their closest hit; the
+//! command prints one JSON line with the triangle count, load and build times, the median
+//! rays per second of each set (the BVH build excluded), the hit fractions, the thread
+//! count and the camera.
+
+use anyhow::{Context, bail};
+use clap::{Args, ValueEnum};
+use glam::{Vec3, Vec3A};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+use std::time::Instant;
+use steadyray_accel::Bvh;
+use steadyray_render::sampling::{pcg_hash, unit_from_hash};
+use steadyray_scene::Camera;
+use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
+
+/// Where `raybench` traces its rays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum RaybenchBackend {
+    /// The 4-wide BVH on the CPU, one rayon task per image row.
+    Cpu,
+}
+
+#[derive(Debug, Args)]
+pub struct RaybenchArgs {
+    /// The mesh file (.obj).
+    #[arg(long)]
+    pub mesh: PathBuf,
+    /// `auto` (the mesh's bounding box, seen from +z) or JSON
+    /// `{"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"vfov":degrees}`.
+    #[arg(long, default_value = "auto")]
+    pub camera: String,
+    /// Image width in pixels (one primary ray per pixel).
+    #[arg(long, default_value_t = 1920)]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 1080)]
+    pub height: u32,
+    /// Where to trace.
+    #[arg(long, value_enum, default_value_t = RaybenchBackend::Cpu)]
+    pub backend: RaybenchBackend,
+    /// Timed repetitions of each ray set; the median is reported.
+    #[arg(long, default_value_t = 5)]
+    pub reps: u32,
+    /// Worker threads on the CPU (0: one per available CPU).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Seed of the bounce directions.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u32,
+}
+
+/// The camera as `--camera` takes it and the report prints it.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct CameraSpec {
+    eye: [f32; 3],
+    target: [f32; 3],
+    up: [f32; 3],
+    vfov: f32,
+}
+
+impl CameraSpec {
+    /// The `--camera` value: `auto` frames the whole mesh (bounding sphere of its box) at
+    /// a 45° field of view, looking along -z.
+    fn parse(text: &str, positions: &[Vec3]) -> anyhow::Result<Self> {
+        if text == "auto" {
+            let (lo, hi) = positions
+                .iter()
+                .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+                    (lo.min(p), hi.max(p))
+                });
+            let center = (lo + hi) * 0.5;
+            let radius = ((hi - lo).length() * 0.5).max(f32::MIN_POSITIVE);
+            let vfov = 45.0f32;
+            let distance = radius / (vfov.to_radians() * 0.5).sin();
+            return Ok(Self {
+                eye: (center + Vec3::Z * distance).to_array(),
+                target: center.to_array(),
+                up: [0.0, 1.0, 0.0],
+                vfov,
+            });
+        }
+        let spec: Self =
+            serde_json::from_str(text).context("--camera: not `auto` or valid JSON")?;
+        let eye = Vec3::from(spec.eye);
+        let (target, up) = (Vec3::from(spec.target), Vec3::from(spec.up));
+        if !(eye.is_finite() && target.is_finite() && up.is_finite()) || eye == target {
+            bail!("--camera: eye, target and up must be finite and eye must differ from target");
+        }
+        if up.length_squared() == 0.0 || !(spec.vfov > 0.0 && spec.vfov < 180.0) {
+            bail!("--camera: up must not be zero and vfov must be in (0, 180) degrees");
+        }
+        Ok(spec)
+    }
+
+    fn camera(&self) -> Camera {
+        Camera::look_at(
+            self.eye.into(),
+            self.target.into(),
+            self.up.into(),
+            self.vfov,
+        )
+    }
+}
+
+/// A ray and, after tracing, its closest hit (t, input triangle index).
+#[derive(Clone, Copy, Debug)]
+struct Cast {
+    origin: Vec3A,
+    dir: Vec3A,
+    hit: Option<(f32, u32)>,
+}
+
+/// The report line.
+#[derive(Debug, Serialize)]
+struct Report {
+    mesh: String,
+    backend: &'static str,
+    triangles: usize,
+    degenerate_dropped: usize,
+    load_s: f64,
+    build_s: f64,
+    width: u32,
+    height: u32,
+    reps: u32,
+    threads: usize,
+    primary_rays: usize,
+    primary_rays_per_s: f64,
+    primary_hit_fraction: f64,
+    bounce_rays: usize,
+    bounce_rays_per_s: f64,
+    bounce_hit_fraction: f64,
+    primary_rays_per_s_reps: Vec<f64>,
+    bounce_rays_per_s_reps: Vec<f64>,
+    camera: CameraSpec,
+}
+
+/// A cosine-weighted direction about unit normal `n` from two uniform numbers in [0, 1)
+/// (Malley's method, with the branchless orthonormal basis of Duff et al., JCGT 2017).
+fn cosine_direction(n: Vec3A, u1: f32, u2: f32) -> Vec3A {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    let t = Vec3A::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    let s = Vec3A::new(b, sign + n.y * n.y * a, -n.y);
+    let r = u1.sqrt();
+    let phi = std::f32::consts::TAU * u2;
+    (t * (r * phi.cos()) + s * (r * phi.sin()) + n * (1.0 - u1).max(0.0).sqrt()).normalize()
+}
+
+/// Traces every cast `reps` times; returns rays per second of each repetition.
+fn trace_all(pool: &rayon::ThreadPool, bvh: &Bvh, casts: &mut [Cast], reps: u32) -> Vec<f64> {
+    (0..reps)
+        .map(|_| {
+            let start = Instant::now();
+            pool.install(|| {
+                casts.par_chunks_mut(1024).for_each(|chunk| {
+                    for c in chunk {
+                        c.hit = bvh.closest(c.origin, c.dir, f32::INFINITY);
+                    }
+                })
+            });
+            casts.len() as f64 / start.elapsed().as_secs_f64()
+        })
+        .collect()
+}
+
+fn median(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => v[n / 2],
+        n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
+}
+
+pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
+    if args.width == 0 || args.height == 0 || args.reps == 0 {
+        bail!("--width, --height and --reps must be at least 1");
+    }
+    let start = Instant::now();
+    let imported = import_mesh(&args.mesh, &MeshTransform::default())?;
+    let load_s = start.elapsed().as_secs_f64();
+    let mesh = imported.mesh;
+    let corners: Vec<[Vec3; 3]> = (0..mesh.triangles.len())
+        .map(|i| mesh.triangle(i))
+        .collect();
+    let spec = CameraSpec::parse(&args.camera, &mesh.positions)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()
+        .context("cannot start the worker threads")?;
+    let start = Instant::now();
+    let bvh = pool
+        .install(|| Bvh::build(&corners))
+        .with_context(|| format!("mesh file {}", args.mesh.display()))?;
+    let build_s = start.elapsed().as_secs_f64();
+
+    let (w, h) = (args.width, args.height);
+    let frame = spec.camera().frame(w, h);
+    let eye = Vec3A::from(frame.eye);
+    let mut primary: Vec<Cast> = (0..h)
+        .flat_map(|py| (0..w).map(move |px| (px, py)))
+        .map(|(px, py)| Cast {
+            origin: eye,
+            dir: frame.ray_dir(px, py, 0.5, 0.5, w, h).into(),
+            hit: None,
+        })
+        .collect();
+    let primary_rates = trace_all(&pool, &bvh, &mut primary, args.reps);
+
+    let mut bounce: Vec<Cast> = primary
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| {
+            let (t, tri) = c.hit?;
+            let [a, b, cc] = corners[tri as usize].map(Vec3A::from);
+            let mut n = (b - a).cross(cc - a).normalize();
+            if n.dot(c.dir) > 0.0 {
+                n = -n;
+            }
+            let hash = pcg_hash(pcg_hash(i as u32) ^ args.seed);
+            let (u1, u2) = (unit_from_hash(hash), unit_from_hash(pcg_hash(hash)));
+            Some(Cast {
+                origin: c.origin + t * c.dir + n * steadyray_accel::T_MIN,
+                dir: cosine_direction(n, u1, u2),
+                hit: None,
+            })
+        })
+        .collect();
+    let bounce_rates = trace_all(&pool, &bvh, &mut bounce, args.reps);
+
+    let hit_fraction = |casts: &[Cast]| {
+        casts.iter().filter(|c| c.hit.is_some()).count() as f64 / casts.len().max(1) as f64
+    };
+    let report = Report {
+        mesh: args.mesh.display().to_string(),
+        backend: "cpu",
+        triangles: bvh.triangle_count(),
+        degenerate_dropped: imported.degenerate_dropped,
+        load_s,
+        build_s,
+        width: w,
+        height: h,
+        reps: args.reps,
+        threads: pool.current_num_threads(),
+        primary_rays: primary.len(),
+        primary_rays_per_s: median(&primary_rates),
+        primary_hit_fraction: hit_fraction(&primary),
+        bounce_rays: bounce.len(),
+        bounce_rays_per_s: median(&bounce_rates),
+        bounce_hit_fraction: hit_fraction(&bounce),
+        primary_rays_per_s_reps: primary_rates,
+        bounce_rays_per_s_reps: bounce_rates,
+        camera: spec,
+    };
+    println!("{}", serde_json::to_string(&report)?);
+    Ok(())
+}
