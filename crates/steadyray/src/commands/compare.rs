@@ -17,6 +17,30 @@ pub struct CompareArgs {
     /// Also write the FLIP error map (magma colours: black is no error) to this PNG.
     #[arg(long, value_name = "PNG")]
     pub error_map: Option<PathBuf>,
+    /// Also write the test image (upscaled), the reference and the FLIP error map side by
+    /// side, in that order, to this PNG.
+    #[arg(long, value_name = "PNG")]
+    pub side_by_side: Option<PathBuf>,
+}
+
+/// `images` (all of the same height) next to each other, left to right, 4 white pixels apart.
+pub fn side_by_side(images: &[&Rgb8Image]) -> Rgb8Image {
+    const GAP: u32 = 4;
+    let height = images.iter().map(|i| i.height()).max().unwrap_or(1);
+    let width = images.iter().map(|i| i.width() + GAP).sum::<u32>() - GAP;
+    let mut starts = Vec::new();
+    let mut x0 = 0;
+    for img in images {
+        starts.push(x0);
+        x0 += img.width() + GAP;
+    }
+    Rgb8Image::from_fn(width.max(1), height, |x, y| {
+        images
+            .iter()
+            .zip(&starts)
+            .find(|(img, s)| x >= **s && x < **s + img.width() && y < img.height())
+            .map_or([255; 3], |(img, s)| img.pixel(x - *s, y))
+    })
 }
 
 /// Reads an image file as 8-bit sRGB.
@@ -47,8 +71,14 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let upscaled = (test.width(), test.height()) != (reference.width(), reference.height());
     let test = test.resize_bilinear(reference.width(), reference.height());
     let m = compare(&reference, &test)?;
-    if let Some(path) = &args.error_map {
-        save_rgb8(&flip(&reference, &test)?.to_magma(), path)?;
+    if args.error_map.is_some() || args.side_by_side.is_some() {
+        let map = flip(&reference, &test)?.to_magma();
+        if let Some(path) = &args.error_map {
+            save_rgb8(&map, path)?;
+        }
+        if let Some(path) = &args.side_by_side {
+            save_rgb8(&side_by_side(&[&test, &reference, &map]), path)?;
+        }
     }
     // JSON has no infinity: identical images report a PSNR of null.
     let psnr = m.psnr.is_finite().then_some(m.psnr);
@@ -64,4 +94,21 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     });
     println!("{line}");
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn side_by_side_places_images_left_to_right() {
+        let a = Rgb8Image::from_fn(2, 2, |_, _| [1; 3]);
+        let b = Rgb8Image::from_fn(3, 1, |_, _| [2; 3]);
+        let both = side_by_side(&[&a, &b]);
+        assert_eq!((both.width(), both.height()), (9, 2));
+        assert_eq!(both.pixel(1, 1), [1; 3]);
+        assert_eq!(both.pixel(3, 0), [255; 3]);
+        assert_eq!(both.pixel(6, 0), [2; 3]);
+        assert_eq!(both.pixel(6, 1), [255; 3]);
+    }
 }
