@@ -8,6 +8,7 @@ pub mod builtin;
 pub mod camera;
 pub mod error;
 pub mod format;
+mod gltf_import;
 pub mod light;
 pub mod load;
 pub mod material;

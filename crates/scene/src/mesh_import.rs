@@ -1,5 +1,5 @@
-//! Mesh import: Wavefront OBJ files (positions and faces) turned into a world-space
-//! [`TriangleMesh`], and the checks every mesh goes through (also inline meshes written in a
+//! Mesh import: Wavefront OBJ files (positions and faces) and glTF 2.0 files (`.gltf`,
+//! `.glb`: meshes placed by their nodes) turned into a world-space [`TriangleMesh`], and the checks every mesh goes through (also inline meshes written in a
 //! scene file): finite vertices, indices in range, degenerate triangles dropped, not empty.
 
 use crate::TriangleMesh;
@@ -74,8 +74,10 @@ pub enum MeshImportError {
         path: PathBuf,
         source: std::io::Error,
     },
-    #[error("mesh file {}: unsupported format (only .obj is supported)", path.display())]
+    #[error("mesh file {}: unsupported format (only .obj, .gltf and .glb are supported)", path.display())]
     Unsupported { path: PathBuf },
+    #[error("mesh file {}: malformed glTF: {reason}", path.display())]
+    Gltf { path: PathBuf, reason: String },
     #[error("mesh file {}: malformed OBJ: {reason}", path.display())]
     Obj {
         path: PathBuf,
@@ -85,29 +87,45 @@ pub enum MeshImportError {
     Invalid { path: PathBuf, problem: MeshProblem },
 }
 
-/// Reads the mesh file at `path` (OBJ, chosen by the extension) and places it with
-/// `transform`.
+/// Reads the mesh file at `path` (OBJ or glTF, chosen by the extension) and places it
+/// with `transform`.
 pub fn import_mesh(
     path: &Path,
     transform: &MeshTransform,
 ) -> Result<ImportedMesh, MeshImportError> {
-    let is_obj = path
+    let extension = path
         .extension()
         .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    if !is_obj {
-        return Err(MeshImportError::Unsupported {
-            path: path.to_owned(),
-        });
-    }
-    let text = std::fs::read_to_string(path).map_err(|source| MeshImportError::Read {
-        path: path.to_owned(),
-        source,
-    })?;
-    let (positions, triangles) = parse_obj(&text).map_err(|reason| MeshImportError::Obj {
-        path: path.to_owned(),
-        reason,
-    })?;
+        .map(str::to_ascii_lowercase);
+    let (positions, triangles) = match extension.as_deref() {
+        Some("obj") => {
+            let text = std::fs::read_to_string(path).map_err(|source| MeshImportError::Read {
+                path: path.to_owned(),
+                source,
+            })?;
+            parse_obj(&text).map_err(|reason| MeshImportError::Obj {
+                path: path.to_owned(),
+                reason,
+            })?
+        }
+        Some("gltf" | "glb") => {
+            if let Err(source) = std::fs::metadata(path) {
+                return Err(MeshImportError::Read {
+                    path: path.to_owned(),
+                    source,
+                });
+            }
+            crate::gltf_import::read_gltf(path).map_err(|reason| MeshImportError::Gltf {
+                path: path.to_owned(),
+                reason,
+            })?
+        }
+        _ => {
+            return Err(MeshImportError::Unsupported {
+                path: path.to_owned(),
+            });
+        }
+    };
     build_mesh(positions, triangles, transform).map_err(|problem| MeshImportError::Invalid {
         path: path.to_owned(),
         problem,
