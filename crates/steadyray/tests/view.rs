@@ -360,3 +360,42 @@ fn a_broken_recording_is_a_clean_error() {
     );
     assert!(text(&out.stderr).contains("is not a folder"));
 }
+
+#[test]
+fn losing_the_display_is_a_clean_error() {
+    let xvfb = match Xvfb::start() {
+        Ok(x) => x,
+        Err(why) => skip!("no X server for the lost-display test: {why}"),
+    };
+    let mut view = Command::new(BIN)
+        .args([
+            "view",
+            "--backend",
+            "cpu",
+            "--width",
+            "320",
+            "--height",
+            "180",
+        ])
+        .env("DISPLAY", &xvfb.display)
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_secs(3));
+    drop(xvfb);
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while view.try_wait().unwrap().is_none() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    if view.try_wait().unwrap().is_none() {
+        let _ = view.kill();
+        panic!("the view kept running after its display went away");
+    }
+    let out = view.wait_with_output().unwrap();
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("thread 'main' panicked"), "{stderr}");
+    assert!(stderr.contains("error:"), "{stderr}");
+}

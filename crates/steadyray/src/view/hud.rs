@@ -98,8 +98,8 @@ pub fn show(ctx: &egui::Context, edit: &mut HudEdit, facts: &HudFacts<'_>) -> Op
     Some(response.response.rect)
 }
 
-/// The scrolling frame-time graph: render time (yellow), presentation interval (grey), the
-/// band shaded green.
+/// The scrolling frame-time graph over the last [`HISTORY_S`] seconds: render time (yellow),
+/// presentation interval (grey), the band shaded green.
 fn graph(ui: &mut egui::Ui, history: &FrameHistory, band: Band) {
     let (response, painter) = ui.allocate_painter(vec2(WIDTH, 70.0), Sense::hover());
     let rect = response.rect;
@@ -108,11 +108,10 @@ fn graph(ui: &mut egui::Ui, history: &FrameHistory, band: Band) {
         return;
     };
     let now = last.t_s;
-    let highest = history
-        .samples()
-        .map(|s| s.render_ms.max(s.present_ms.unwrap_or(0.0)))
-        .fold(0.0, f64::max);
-    let top_ms = highest.clamp(band.tmax_ms() * 1.5, band.tmax_ms() * 4.0);
+    // Room for twice the band's top, more for slow frames (up to four times); the
+    // presentation interval may run off the top.
+    let p95 = history.render_spread(HISTORY_S).map_or(0.0, |s| s.p95);
+    let top_ms = p95.clamp(band.tmax_ms() * 2.0, band.tmax_ms() * 4.0);
     let y = |ms: f64| rect.bottom() - (ms / top_ms).min(1.0) as f32 * rect.height();
     let x = |t_s: f64| rect.right() - ((now - t_s) / HISTORY_S) as f32 * rect.width();
     let band_rect = Rect::from_x_y_ranges(rect.x_range(), y(band.tmax_ms())..=y(band.tmin_ms()));

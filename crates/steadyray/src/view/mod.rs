@@ -223,10 +223,40 @@ pub fn run(args: &ViewArgs) -> Result<()> {
     })?;
     let instance = steadyray_render_gpu::display_instance(event_loop.owned_display_handle());
     let mut app = app::App::new(plan, instance);
-    event_loop
-        .run_app(&mut app)
-        .context("the window's event loop failed")?;
+    match run_guarded(|| event_loop.run_app(&mut app)) {
+        Ok(result) => result.context("the window's event loop failed")?,
+        Err(panic) => {
+            // The window system's state is unknown after a panic inside it: leave the
+            // window and GPU objects to the process exit rather than tear them down.
+            std::mem::forget(app);
+            bail!("the window system failed: {panic} (was the display closed?)");
+        }
+    }
     app.finish()
+}
+
+/// Runs `f`, turning a panic into its message: winit panics when the display connection
+/// dies (e.g. the X server exits), which must end the view with a message, not a crash.
+fn run_guarded<T>(f: impl FnOnce() -> T) -> std::result::Result<T, String> {
+    let message = std::sync::Arc::new(std::sync::Mutex::new(None::<String>));
+    let hook = std::panic::take_hook();
+    let sink = message.clone();
+    std::panic::set_hook(Box::new(move |info| {
+        let text = format!("{info}");
+        log::debug!("panic in the window system: {text}");
+        if let Ok(mut m) = sink.lock() {
+            m.get_or_insert(text);
+        }
+    }));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    std::panic::set_hook(hook);
+    result.map_err(|_| {
+        message
+            .lock()
+            .ok()
+            .and_then(|mut m| m.take())
+            .unwrap_or_else(|| "unknown panic".into())
+    })
 }
 
 #[cfg(test)]
@@ -261,6 +291,13 @@ mod tests {
             };
             assert!(err.contains(expected), "{args:?}: {err}");
         }
+    }
+
+    #[test]
+    fn a_panic_in_the_window_system_becomes_a_message() {
+        assert_eq!(run_guarded(|| 7), Ok(7));
+        let err = run_guarded(|| -> u32 { panic!("connection reset") }).unwrap_err();
+        assert!(err.contains("connection reset"), "{err}");
     }
 
     #[test]
