@@ -20,7 +20,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 use steadyray_control::{Band, FrameReport};
-use steadyray_render::{RenderSettings, TimingSource};
+use steadyray_render::{FrameStats, RenderSettings, TimingSource};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{GpuOptions, GpuRenderer, surface_adapter};
 use winit::application::ApplicationHandler;
@@ -223,6 +223,21 @@ fn default_pixel_size(window_width: u32, gpu: bool, software: bool) -> u32 {
         (false, _) => 640,
     };
     window_width.div_ceil(target.max(1)).max(1)
+}
+
+/// The render time the controller sees for a frame, and where it came from: the renderer's
+/// own figure (GPU timestamps or the CPU renderer's time), unless GPU timestamps are
+/// implausibly far below the render call's wall time (lavapipe's, once frames are also
+/// presented on its queue, read about 0.3 ms for a 70 ms frame); then the wall time.
+fn controller_time(stats: &FrameStats) -> (f64, TimingSource) {
+    let implausible = stats.timing == TimingSource::GpuTimestamps
+        && stats.wall_ms - stats.render_ms > 5.0
+        && stats.render_ms < stats.wall_ms / 4.0;
+    if implausible {
+        (stats.wall_ms, TimingSource::WallClock)
+    } else {
+        (stats.render_ms, stats.timing)
+    }
 }
 
 /// Opens a device on `adapter` for the window alone (CPU rendering and playback).
@@ -552,14 +567,31 @@ impl Running {
                     spp: q.spp,
                     max_depth: q.depth,
                 };
+                // The previous frame's present work first: the render call's wall time is
+                // then its own, a check on the GPU timestamps.
+                if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
+                    return Err(anyhow!("waiting for the GPU failed: {e}"));
+                }
                 let stats = live.renderer.render(&live.camera.camera(), &settings)?;
-                if stats.timing == TimingSource::WallClock
+                let (render_ms, source) = controller_time(&stats);
+                if source != TimingSource::GpuTimestamps
                     && self.timing.starts_with("GPU timestamps")
                 {
+                    log::warn!(
+                        "GPU timestamps say {:.2} ms but the render call took {:.2} ms: the \
+                         controller uses the wall clock from now on",
+                        stats.render_ms,
+                        stats.wall_ms
+                    );
                     self.timing = "GPU wall clock".into();
                 }
+                let render_ms = if self.timing.starts_with("GPU wall clock") {
+                    stats.wall_ms
+                } else {
+                    render_ms
+                };
                 let report = FrameReport {
-                    tp_ms: stats.render_ms,
+                    tp_ms: render_ms,
                     rays_per_depth: stats.rays.per_depth.clone(),
                     shadow_rays: stats.rays.shadow,
                     pixels: settings.pixels(),
@@ -570,7 +602,7 @@ impl Running {
                 }
                 let sample = Sample {
                     t_s,
-                    render_ms: stats.render_ms,
+                    render_ms,
                     present_ms: None,
                     quality: q,
                     rays: stats.rays.total(),
@@ -771,6 +803,33 @@ mod tests {
         assert_eq!(full_size((0, 0), 2), (1, 1));
         assert_eq!(scaled((160, 90), 0.5), (80, 45));
         assert_eq!(scaled((160, 90), 0.001), (1, 1));
+    }
+
+    #[test]
+    fn implausible_timestamps_give_way_to_the_wall_clock() {
+        let stats = |render_ms, wall_ms, timing| FrameStats {
+            render_ms,
+            wall_ms,
+            timing,
+            rays: Default::default(),
+            width: 1,
+            height: 1,
+            samples: 1,
+        };
+        let gpu = TimingSource::GpuTimestamps;
+        let wall = TimingSource::WallClock;
+        assert_eq!(controller_time(&stats(16.0, 17.5, gpu)), (16.0, gpu));
+        assert_eq!(
+            controller_time(&stats(0.4, 1.9, gpu)),
+            (0.4, gpu),
+            "small overhead"
+        );
+        assert_eq!(
+            controller_time(&stats(0.3, 72.0, gpu)),
+            (72.0, wall),
+            "lavapipe"
+        );
+        assert_eq!(controller_time(&stats(40.0, 41.0, wall)), (40.0, wall));
     }
 
     #[test]
