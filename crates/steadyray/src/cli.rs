@@ -86,6 +86,11 @@ pub struct RenderArgs {
     /// Print one JSON line with the frame's time and ray counts.
     #[arg(long)]
     pub stats: bool,
+    /// Frames rendered and discarded before the reported one, so that `--stats` times a
+    /// warm renderer (thread pool started, buffers allocated, pipelines compiled; on the
+    /// 2-core CPU one frame is not enough: the first three run up to 40 % slower).
+    #[arg(long, default_value_t = 3)]
+    pub warmup: u32,
     /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance).
     #[arg(short = 'o', long = "output", default_value = "render.png")]
     pub output: PathBuf,

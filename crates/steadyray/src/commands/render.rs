@@ -34,6 +34,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     };
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
+    for _ in 0..args.warmup {
+        renderer.render(&camera, &settings)?;
+    }
     let stats = renderer.render(&camera, &settings)?;
     let image = renderer.read_image()?;
     save_image(&image, &args.output).with_context(|| format!("rendering {} failed", scene.name))?;
