@@ -3,9 +3,11 @@
 //!
 //! Each frame:
 //! 1. The [`CostModel`] (Tp ≈ fixed_ms + ms_per_ray · rays, fitted online, robust to
-//!    spikes) takes the frame. A frame it sets aside as an outlier changes nothing: a
-//!    one-frame hitch costs no quality; a second outlier on the same side confirms a real
-//!    change of cost and the model refits at once.
+//!    spikes) takes the frame. A frame it sets aside as an outlier is not fitted: a frame
+//!    that took [`HITCH_RATIO`] times its prediction or more is a hitch and changes nothing;
+//!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once with
+//!    predictions scaled by how much slower it ran; a second outlier on the same side
+//!    confirms a real change of cost and the model refits at once.
 //! 2. The [`RayModel`] of the frame gives the rays any candidate quality would trace. The
 //!    load's trend (the camera moves smoothly) is extrapolated one frame ahead: an
 //!    exponential average of the frame-to-frame growth of the load, weight `trend`, each
@@ -41,6 +43,10 @@ use crate::report::{FrameReport, ReportError};
 
 /// The largest frame-to-frame load growth the trend extrapolates (±10 %).
 const MAX_GROWTH: f64 = 1.1;
+/// A frame over Tmax that the cost model sets aside is a hitch (ignored) when it took this
+/// many times its prediction, and an overload to cut at once (predictions scaled by its
+/// surprise) when it took less.
+pub const HITCH_RATIO: f64 = 3.0;
 /// Fitted frames needed before the aim follows the measured noise.
 pub const MIN_NOISE_FRAMES: usize = 8;
 /// Planned times scored across the band by [`Predictive::aim`].
@@ -165,6 +171,9 @@ pub struct Predictive {
     load: Option<RayModel>,
     /// Exponential average of ln(load growth per frame).
     trend: f64,
+    /// How much slower than predicted the last frame ran, when the cost model set it aside
+    /// as an overload (1 otherwise): scales the predictions of the decision it triggers.
+    surprise: f64,
     /// Where on the ladder the current quality lies (see [`Predictive::ladder_quality`]);
     /// `None` off the ladder (the starting quality) or without one.
     ladder_pos: Option<f64>,
@@ -182,6 +191,7 @@ impl Predictive {
             params,
             load: None,
             trend: 0.0,
+            surprise: 1.0,
             ladder_pos: None,
         })
     }
@@ -199,7 +209,9 @@ impl Predictive {
     /// The predicted time of the next frame at quality `q`, ms (`None` before any frame).
     pub fn predict_ms(&self, q: &Quality) -> Option<f64> {
         let load = self.load.as_ref()?;
-        self.cost.predict_ms(load.rays(q) * self.trend.exp())
+        self.cost
+            .predict_ms(load.rays(q) * self.trend.exp())
+            .map(|t| t * self.surprise)
     }
 
     /// Updates the load and its trend from an accepted frame.
@@ -448,8 +460,19 @@ impl Controller for Predictive {
 
     fn observe(&mut self, report: &FrameReport) -> Result<Quality, ReportError> {
         report.check_rays()?;
-        if self.cost.observe(report.total_rays() as f64, report.tp_ms) == Fit::Outlier {
-            return Ok(self.quality);
+        let rays = report.total_rays() as f64;
+        let expected = self.cost.predict_ms(rays);
+        self.surprise = 1.0;
+        if self.cost.observe(rays, report.tp_ms) == Fit::Outlier {
+            // Set aside by the cost model: a hitch or the first frame of a change. Over the
+            // band and not a hitch, it is an overload to cut now, not a frame to wait on.
+            let overload = expected.filter(|&e| {
+                report.tp_ms > self.setup.band.tmax_ms() && report.tp_ms < HITCH_RATIO * e
+            });
+            let Some(expected) = overload else {
+                return Ok(self.quality);
+            };
+            self.surprise = report.tp_ms / expected;
         }
         self.update_load(report);
         let (quality, ladder_pos) = self.decide();
@@ -465,6 +488,7 @@ impl Controller for Predictive {
         self.cost = CostModel::new(self.params.cost.clone());
         self.load = None;
         self.trend = 0.0;
+        self.surprise = 1.0;
         self.ladder_pos = None;
     }
 }
