@@ -47,6 +47,41 @@ pub enum BackendChoice {
     Cpu,
 }
 
+/// The bounds of the quality knobs a controller may move (S, R, resolution scale).
+#[derive(Debug, Args)]
+pub struct BoundsArgs {
+    /// Smallest eye rays per pixel S.
+    #[arg(long, default_value_t = 1.0)]
+    pub spp_min: f32,
+    /// Largest eye rays per pixel S.
+    #[arg(long, default_value_t = 256.0)]
+    pub spp_max: f32,
+    /// Smallest reflection depth R.
+    #[arg(long, default_value_t = 0)]
+    pub depth_min: u32,
+    /// Largest reflection depth R (controllers start here, at the smallest S and full
+    /// resolution).
+    #[arg(long, default_value_t = 16)]
+    pub depth_max: u32,
+    /// Smallest resolution scale.
+    #[arg(long, default_value_t = 0.25)]
+    pub scale_min: f32,
+    /// Largest resolution scale.
+    #[arg(long, default_value_t = 1.0)]
+    pub scale_max: f32,
+}
+
+impl BoundsArgs {
+    /// The checked bounds.
+    pub fn bounds(&self) -> Result<steadyray_control::Bounds, steadyray_control::ConfigError> {
+        steadyray_control::Bounds::new(
+            (self.spp_min, self.spp_max),
+            (self.depth_min, self.depth_max),
+            (self.scale_min, self.scale_max),
+        )
+    }
+}
+
 /// Arguments shared by every command that renders a scene.
 #[derive(Debug, Args)]
 pub struct SceneArgs {

@@ -17,7 +17,7 @@ mod report;
 mod source;
 
 use crate::backend::create_renderer;
-use crate::cli::SceneArgs;
+use crate::cli::{BoundsArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use experiment::{Capture, Sweep, run_controller, search_best_fixed};
@@ -26,7 +26,7 @@ use record::ControllerRun;
 use report::{RunContext, quality_label};
 use source::{FrameSource, RendererSource};
 use std::path::PathBuf;
-use steadyray_control::{Band, Bounds, CONTROLLER_NAMES, Quality, Setup, from_name};
+use steadyray_control::{Band, CONTROLLER_NAMES, Quality, Setup, from_name};
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -64,24 +64,8 @@ pub struct BenchArgs {
     /// Use the simulated renderer (a cost model on a fake clock) instead of a real one.
     #[arg(long)]
     pub simulate: bool,
-    /// Smallest eye rays per pixel S.
-    #[arg(long, default_value_t = 1.0)]
-    pub spp_min: f32,
-    /// Largest eye rays per pixel S.
-    #[arg(long, default_value_t = 256.0)]
-    pub spp_max: f32,
-    /// Smallest reflection depth R.
-    #[arg(long, default_value_t = 0)]
-    pub depth_min: u32,
-    /// Largest reflection depth R.
-    #[arg(long, default_value_t = 16)]
-    pub depth_max: u32,
-    /// Smallest resolution scale.
-    #[arg(long, default_value_t = 0.25)]
-    pub scale_min: f32,
-    /// Largest resolution scale.
-    #[arg(long, default_value_t = 1.0)]
-    pub scale_max: f32,
+    #[command(flatten)]
+    pub bounds: BoundsArgs,
     /// R of the paper's fixed baseline and of every controller's start (default: the
     /// largest R). S starts at its minimum and the scale at its maximum.
     #[arg(long)]
@@ -164,11 +148,7 @@ fn default_resolution(backend: &str, device: &str) -> (u32, u32) {
 /// Runs the experiment and writes its reports.
 pub fn run(args: &BenchArgs) -> Result<()> {
     let band = Band::new(args.tmin, args.tmax)?;
-    let bounds = Bounds::new(
-        (args.spp_min, args.spp_max),
-        (args.depth_min, args.depth_max),
-        (args.scale_min, args.scale_max),
-    )?;
+    let bounds = args.bounds.bounds()?;
     let start = Quality {
         spp: bounds.spp_min,
         depth: args.fixed_depth.unwrap_or(bounds.depth_max),

@@ -19,14 +19,14 @@ mod playback;
 mod present;
 mod screen;
 
-use crate::cli::SceneArgs;
+use crate::cli::{BoundsArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use live_control::LiveControl;
 use playback::Recording;
 use screen::PresentChoice;
 use std::path::PathBuf;
-use steadyray_control::{Band, Bounds, Quality};
+use steadyray_control::{Band, Quality};
 use steadyray_scene::Scene;
 
 #[derive(Debug, Args)]
@@ -56,25 +56,8 @@ pub struct ViewArgs {
     /// How frames are presented.
     #[arg(long, value_enum, default_value_t = PresentChoice::Fifo)]
     pub present: PresentChoice,
-    /// Smallest eye rays per pixel S.
-    #[arg(long, default_value_t = 1.0)]
-    pub spp_min: f32,
-    /// Largest eye rays per pixel S.
-    #[arg(long, default_value_t = 256.0)]
-    pub spp_max: f32,
-    /// Smallest reflection depth R.
-    #[arg(long, default_value_t = 0)]
-    pub depth_min: u32,
-    /// Largest reflection depth R (the controller starts here, at the smallest S and full
-    /// resolution).
-    #[arg(long, default_value_t = 16)]
-    pub depth_max: u32,
-    /// Smallest resolution scale.
-    #[arg(long, default_value_t = 0.25)]
-    pub scale_min: f32,
-    /// Largest resolution scale.
-    #[arg(long, default_value_t = 1.0)]
-    pub scale_max: f32,
+    #[command(flatten)]
+    pub bounds: BoundsArgs,
     /// Start with the automatic sweep on (Space toggles it).
     #[arg(long)]
     pub sweep: bool,
@@ -165,11 +148,7 @@ impl Plan {
                 (Content::Playback(recording), (w, h))
             }
             None => {
-                let bounds = Bounds::new(
-                    (args.spp_min, args.spp_max),
-                    (args.depth_min, args.depth_max),
-                    (args.scale_min, args.scale_max),
-                )?;
+                let bounds = args.bounds.bounds()?;
                 let start = Quality::new(bounds.spp_min, bounds.depth_max, bounds.scale_max);
                 let (name, options) = args
                     .controller
