@@ -2,7 +2,7 @@
 
 use crate::backend::create_renderer;
 use crate::cli::RenderArgs;
-use crate::image_out::save_image;
+use crate::image_out::{image_format, save_image};
 use anyhow::{Context, Result, bail};
 use serde_json::json;
 use steadyray_render::RenderSettings;
@@ -18,6 +18,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         max_depth: args.depth,
     };
     settings.validate()?;
+    image_format(&args.output)?;
     let camera = match (args.yaw, args.frame) {
         (Some(yaw), _) => {
             let pitch = scene.camera.forward.normalize().y.clamp(-1.0, 1.0).asin();
