@@ -47,6 +47,9 @@ const MAX_GROWTH: f64 = 1.1;
 /// many times its prediction, and an overload to cut at once (predictions scaled by its
 /// surprise) when it took less.
 pub const HITCH_RATIO: f64 = 3.0;
+/// Frames in a row measured above the inner band that `measured_cut` takes for a drift
+/// (fewer are too often noise, or a coarse timer's rounding).
+pub const DRIFT_FRAMES: u32 = 3;
 /// Fitted frames needed before the aim follows the measured noise.
 pub const MIN_NOISE_FRAMES: usize = 8;
 /// Planned times scored across the band by [`Predictive::aim`].
@@ -76,6 +79,10 @@ pub struct PredictiveParams {
     pub max_raise: f64,
     /// `trend`: weight of the newest growth in the load trend, 0 to disable. Default 0.5.
     pub trend: f64,
+    /// `measured_cut`: [`DRIFT_FRAMES`] frames in a row measured above the inner band trigger
+    /// a cut even when the model still predicts the quality fits (the model lags a cost that
+    /// drifts with the view). Without it only frames over Tmax do. Default true.
+    pub measured_cut: bool,
     /// The cost model's parameters (options `forgetting`, `outlier_k`, `confirm`).
     pub cost: CostParams,
     /// `ladder`: a calibrated ladder file (`ladder.json`) to move along instead of `order`.
@@ -92,13 +99,14 @@ impl Default for PredictiveParams {
             min_reach: 0.02,
             max_raise: 2.0,
             trend: 0.5,
+            measured_cut: true,
             cost: CostParams::default(),
             ladder: None,
         }
     }
 }
 
-const PREDICTIVE_KEYS: &str = "order, target, deadband, min_reach, max_raise, trend, \
+const PREDICTIVE_KEYS: &str = "order, target, deadband, min_reach, max_raise, trend, measured_cut, \
                                forgetting, outlier_k, confirm, ladder";
 
 impl PredictiveParams {
@@ -111,6 +119,7 @@ impl PredictiveParams {
             "min_reach" => self.min_reach = parse_option(key, value, within(0.0, 1.0))?,
             "max_raise" => self.max_raise = parse_option(key, value, within(1.01, 1e6))?,
             "trend" => self.trend = parse_option(key, value, within(0.0, 1.0))?,
+            "measured_cut" => self.measured_cut = parse_option(key, value, |_| Ok(()))?,
             "forgetting" => self.cost.forgetting = parse_option(key, value, within(0.01, 1.0))?,
             "outlier_k" => self.cost.outlier_k = parse_option(key, value, within(1.0, 1e6))?,
             "confirm" => self.cost.confirm = parse_option(key, value, within(1, 100))?,
@@ -174,6 +183,8 @@ pub struct Predictive {
     /// How much slower than predicted the last frame ran, when the cost model set it aside
     /// as an overload (1 otherwise): scales the predictions of the decision it triggers.
     surprise: f64,
+    /// Frames in a row measured above the inner band at the current quality.
+    above_run: u32,
     /// Where on the ladder the current quality lies (see [`Predictive::ladder_quality`]);
     /// `None` off the ladder (the starting quality) or without one.
     ladder_pos: Option<f64>,
@@ -192,6 +203,7 @@ impl Predictive {
             load: None,
             trend: 0.0,
             surprise: 1.0,
+            above_run: 0,
             ladder_pos: None,
         })
     }
@@ -463,19 +475,32 @@ impl Controller for Predictive {
         let rays = report.total_rays() as f64;
         let expected = self.cost.predict_ms(rays);
         self.surprise = 1.0;
-        if self.cost.observe(rays, report.tp_ms) == Fit::Outlier {
-            // Set aside by the cost model: a hitch or the first frame of a change. Over the
-            // band and not a hitch, it is an overload to cut now, not a frame to wait on.
-            let overload = expected.filter(|&e| {
-                report.tp_ms > self.setup.band.tmax_ms() && report.tp_ms < HITCH_RATIO * e
-            });
-            let Some(expected) = overload else {
-                return Ok(self.quality);
-            };
-            self.surprise = report.tp_ms / expected;
+        let fit = self.cost.observe(rays, report.tp_ms);
+        let hitch = expected.is_some_and(|e| report.tp_ms >= HITCH_RATIO * e);
+        if fit == Fit::Outlier && (hitch || report.tp_ms <= self.setup.band.tmax_ms()) {
+            // Set aside by the cost model: a hitch, or the first frame of a change that the
+            // band tolerates. Over the band and not a hitch, it is an overload to cut now,
+            // not a frame to wait on (below).
+            return Ok(self.quality);
+        }
+        // An outlier over Tmax (not a hitch) re-plans at once, and with `measured_cut` so does
+        // the second frame in a row measured above the inner band (a drift the model lags);
+        // predictions are then scaled by how much slower the frame ran than predicted.
+        self.above_run = if report.tp_ms > self.aim().high_ms {
+            self.above_run + 1
+        } else {
+            0
+        };
+        let drift = self.params.measured_cut && self.above_run >= DRIFT_FRAMES;
+        let overload = fit == Fit::Outlier;
+        if let Some(e) = expected.filter(|_| !hitch && (overload || drift)) {
+            self.surprise = (report.tp_ms / e).max(1.0);
         }
         self.update_load(report);
         let (quality, ladder_pos) = self.decide();
+        if quality != self.quality {
+            self.above_run = 0;
+        }
         self.quality = quality;
         if ladder_pos.is_some() {
             self.ladder_pos = ladder_pos;
@@ -489,6 +514,7 @@ impl Controller for Predictive {
         self.load = None;
         self.trend = 0.0;
         self.surprise = 1.0;
+        self.above_run = 0;
         self.ladder_pos = None;
     }
 }
@@ -519,7 +545,12 @@ mod tests {
     #[test]
     fn aims_below_the_centre_when_noise_only_slows_frames() {
         let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
-        let mut c = Predictive::new(setup, PredictiveParams::default()).unwrap();
+        // The aim alone: on a constant load, cutting on measured frames only chases noise.
+        let params = PredictiveParams {
+            measured_cut: false,
+            ..PredictiveParams::default()
+        };
+        let mut c = Predictive::new(setup, params).unwrap();
         let mut rng = crate::simulate::Pcg32::new(7);
         let mut in_band = 0;
         let frames = 600;
@@ -537,6 +568,37 @@ mod tests {
         // Aiming at the centre with the nominal inner band keeps 89 % of these frames.
         assert!(pct >= 96.5, "{pct:.1} % in band, aim {aim:?}");
         assert!(aim.target_ms < Band::PAPER.centre_ms(), "{aim:?}");
+    }
+
+    #[test]
+    fn frames_measured_above_the_inner_band_cut_deeper_with_measured_cut() {
+        let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+        let after_slow_frames = |measured_cut: bool| {
+            let params = PredictiveParams {
+                measured_cut,
+                ..PredictiveParams::default()
+            };
+            let mut c = Predictive::new(setup, params).unwrap();
+            for _ in 0..30 {
+                let r = frame(c.quality(), 1e6);
+                c.observe(&r).unwrap();
+            }
+            let settled = c.quality();
+            let high = c.aim().high_ms;
+            // Frames slower than the model expects, above the inner band yet inside
+            // the band and inside the cost model's tolerance.
+            for _ in 0..DRIFT_FRAMES {
+                let mut r = frame(c.quality(), 1e6);
+                r.tp_ms = (high + 0.5).min(Band::PAPER.tmax_ms() - 0.1);
+                c.observe(&r).unwrap();
+            }
+            (settled, c.quality())
+        };
+        // Without it the model moves only as far as three fitted frames pull it.
+        let (settled, with) = after_slow_frames(true);
+        let (_, without) = after_slow_frames(false);
+        assert!(with.cmp_level(&settled).is_lt(), "{settled} -> {with}");
+        assert!(with.cmp_level(&without).is_lt(), "{with} vs {without}");
     }
 
     #[test]
