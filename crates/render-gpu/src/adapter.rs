@@ -93,9 +93,16 @@ impl AdapterSummary {
     }
 }
 
-/// A wgpu instance over the backends `WGPU_BACKEND` names (all by default).
+/// The backends searched unless `WGPU_BACKEND` names others: Vulkan, Metal, DX12. wgpu's GL
+/// backend cannot run these compute shaders on NVIDIA's driver (`shared/gpu/README.md`),
+/// and probing it only prints EGL noise on machines without a display.
+pub(crate) const DEFAULT_BACKENDS: wgpu::Backends = wgpu::Backends::PRIMARY;
+
+/// A wgpu instance over [`DEFAULT_BACKENDS`], or the backends `WGPU_BACKEND` names.
 pub(crate) fn new_instance() -> wgpu::Instance {
-    wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle().with_env())
+    let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle();
+    descriptor.backends = DEFAULT_BACKENDS;
+    wgpu::Instance::new(descriptor.with_env())
 }
 
 /// Every adapter the system offers, best first (see [`AdapterSummary`]).

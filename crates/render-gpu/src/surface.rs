@@ -9,14 +9,14 @@ use crate::adapter::select_adapter_where;
 use std::fmt::Debug;
 use steadyray_render::RenderError;
 
-/// A wgpu instance over the backends `WGPU_BACKEND` names (all by default) that can create
-/// surfaces on `display` (e.g. winit's `OwnedDisplayHandle`).
+/// A wgpu instance over the default backends (or those `WGPU_BACKEND` names) that can
+/// create surfaces on `display` (e.g. winit's `OwnedDisplayHandle`).
 pub fn display_instance(
     display: impl wgpu::rwh::HasDisplayHandle + Debug + Send + Sync + 'static,
 ) -> wgpu::Instance {
-    wgpu::Instance::new(
-        wgpu::InstanceDescriptor::new_with_display_handle(Box::new(display)).with_env(),
-    )
+    let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(display));
+    descriptor.backends = crate::adapter::DEFAULT_BACKENDS;
+    wgpu::Instance::new(descriptor.with_env())
 }
 
 /// The best adapter of `instance` that `options` allow and that can present to `surface`, or
