@@ -33,13 +33,40 @@ macro_rules! skip {
 struct Xvfb {
     child: Child,
     display: String,
+    number: u32,
+}
+
+/// The lock and socket files an X server on display `n` leaves in /tmp.
+fn display_files(n: u32) -> [PathBuf; 2] {
+    [
+        PathBuf::from(format!("/tmp/.X{n}-lock")),
+        PathBuf::from(format!("/tmp/.X11-unix/X{n}")),
+    ]
+}
+
+/// Whether display `n` is held by a live X server: a lock file naming a running process. A
+/// lock left by a server that was killed is stale and is removed.
+fn display_taken(n: u32) -> bool {
+    let [lock, socket] = display_files(n);
+    let Ok(text) = std::fs::read_to_string(&lock) else {
+        return false;
+    };
+    let alive = text
+        .trim()
+        .parse::<u32>()
+        .is_ok_and(|pid| Path::new(&format!("/proc/{pid}")).exists());
+    if !alive {
+        let _ = std::fs::remove_file(lock);
+        let _ = std::fs::remove_file(socket);
+    }
+    alive
 }
 
 impl Xvfb {
     /// Starts Xvfb on the first free display from :90 up; an error says why none started.
     fn start() -> Result<Self, String> {
         for n in 90..140 {
-            if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+            if display_taken(n) {
                 continue;
             }
             let child = Command::new("Xvfb")
@@ -68,6 +95,7 @@ impl Xvfb {
                     return Ok(Self {
                         child,
                         display: format!(":{n}"),
+                        number: n,
                     });
                 }
                 std::thread::sleep(Duration::from_millis(50));
@@ -80,9 +108,14 @@ impl Xvfb {
 }
 
 impl Drop for Xvfb {
+    /// Kills the server and removes the lock and socket it cannot remove once killed, so that
+    /// test runs do not use up the displays.
     fn drop(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();
+        for file in display_files(self.number) {
+            let _ = std::fs::remove_file(file);
+        }
     }
 }
 
