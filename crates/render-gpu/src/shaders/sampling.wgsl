@@ -22,13 +22,19 @@ const R2_A: f32 = 0.7548777;
 const R2_B: f32 = 0.5698403;
 
 fn sample_offset(i: u32, n: u32) -> vec2<f32> {
-    if n <= 1u {
+    let odd = n & 1u;
+    if i < odd || n <= 1u {
         return vec2<f32>(0.5, 0.5);
     }
-    let fi = f32(i);
-    let u = 0.5 + fi * R2_A;
-    let v = 0.5 + fi * R2_B;
-    return vec2<f32>(u - floor(u), v - floor(v));
+    let j = i - odd;
+    let k = f32(j / 2u + 1u);
+    let p = vec2<f32>(0.5 + k * R2_A, 0.5 + k * R2_B);
+    let q = p - floor(p);
+    if (j & 1u) == 0u {
+        return q;
+    }
+    let m = vec2<f32>(1.0, 1.0) - q;
+    return m - floor(m);
 }
 
 var<private> BAYER8: array<u32, 64> = array<u32, 64>(
