@@ -131,7 +131,12 @@ impl Hysteresis {
     pub fn new(setup: Setup, params: HysteresisParams) -> Result<Self, ConfigError> {
         setup.validate()?;
         params.validate()?;
-        Ok(Self {
+        Ok(Self::fresh(setup, params))
+    }
+
+    /// A controller at the starting quality with an empty history.
+    fn fresh(setup: Setup, params: HysteresisParams) -> Self {
+        Self {
             setup,
             params,
             quality: setup.start,
@@ -141,7 +146,7 @@ impl Hysteresis {
             headroom_sum: 0.0,
             last_tp: None,
             held: false,
-        })
+        }
     }
 
     /// The parameters in use.
@@ -252,17 +257,7 @@ impl Controller for Hysteresis {
     }
 
     fn reset(&mut self) {
-        *self = Self {
-            setup: self.setup,
-            params: self.params.clone(),
-            quality: self.setup.start,
-            since_change: 0,
-            over_run: 0,
-            headroom_run: 0,
-            headroom_sum: 0.0,
-            last_tp: None,
-            held: false,
-        };
+        *self = Self::fresh(self.setup, self.params.clone());
     }
 }
 
