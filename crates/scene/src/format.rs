@@ -151,7 +151,7 @@ struct RawShape {
     name: Spanned<String>,
     #[serde(rename = "type")]
     kind: Spanned<String>,
-    material: Spanned<String>,
+    material: Option<Spanned<String>>,
     center: Option<Spanned<V3>>,
     radius: Option<Spanned<f32>>,
     corner: Option<Spanned<V3>>,
@@ -226,28 +226,99 @@ impl Cx<'_> {
         };
 
         let mut materials = Vec::with_capacity(raw.materials.len());
-        let mut material_index: HashMap<&str, usize> = HashMap::new();
+        let mut material_index: HashMap<String, usize> = HashMap::new();
         for m in &raw.materials {
             let name = self.unique_name("material", &m.get_ref().name, &material_index)?;
-            material_index.insert(name, materials.len());
+            material_index.insert(name.to_owned(), materials.len());
             materials.push((name.to_owned(), self.material(m)?));
         }
 
         let mut objects = Vec::with_capacity(raw.shapes.len());
-        let mut shape_names: HashMap<&str, usize> = HashMap::new();
-        for s in &raw.shapes {
+        // Shape names (also those made for the parts of glTF meshes) and the ordinal of the
+        // `[[shapes]]` table that made each.
+        let mut shape_names: HashMap<String, usize> = HashMap::new();
+        for (ordinal, s) in raw.shapes.iter().enumerate() {
             let r = s.get_ref();
             let name = self.unique_name("shape", &r.name, &shape_names)?;
-            shape_names.insert(name, objects.len());
-            let material = match material_index.get(r.material.get_ref().as_str()) {
+            shape_names.insert(name.to_owned(), ordinal);
+            let Some(material_key) = &r.material else {
+                let gltf_file = r.kind.get_ref() == "mesh"
+                    && r.positions.is_none()
+                    && r.triangles.is_none()
+                    && r.path
+                        .as_ref()
+                        .is_some_and(|p| mesh_import::is_gltf_path(Path::new(p.get_ref())));
+                if !gltf_file {
+                    return Err(self.invalid(
+                        s.span(),
+                        format!(
+                            "shape {name:?}: missing `material` (only a mesh read from a glTF \
+                             file, .gltf or .glb, may leave it out to use the file's own \
+                             materials)"
+                        ),
+                    ));
+                }
+                let (file_materials, parts) = self.gltf_parts(s, name)?;
+                let mut made: HashMap<usize, usize> = HashMap::new();
+                let several = parts.len() > 1;
+                for (mesh, m) in parts {
+                    let (label, material) = &file_materials[m];
+                    let material = match made.get(&m) {
+                        Some(&i) => i,
+                        None => {
+                            let material_name = format!("{name}/{label}");
+                            if material_index.contains_key(&material_name) {
+                                return Err(self.invalid(
+                                    r.name.span(),
+                                    format!(
+                                        "shape {name:?}: the material made for glTF material \
+                                         {label:?} would be named {material_name:?}, which is \
+                                         already a material; rename the shape or that material"
+                                    ),
+                                ));
+                            }
+                            material_index.insert(material_name.clone(), materials.len());
+                            materials.push((material_name, material.clone()));
+                            made.insert(m, materials.len() - 1);
+                            materials.len() - 1
+                        }
+                    };
+                    let object_name = if several {
+                        format!("{name}/{label}")
+                    } else {
+                        name.to_owned()
+                    };
+                    if several {
+                        if let Some(first) = shape_names.get(&object_name) {
+                            return Err(self.invalid(
+                                r.name.span(),
+                                format!(
+                                    "shape {name:?}: the part for glTF material {label:?} \
+                                     would be named {object_name:?}, which shape {} already \
+                                     uses",
+                                    first + 1
+                                ),
+                            ));
+                        }
+                        shape_names.insert(object_name.clone(), ordinal);
+                    }
+                    objects.push(Object {
+                        name: object_name,
+                        shape: Shape::Mesh(mesh),
+                        material,
+                    });
+                }
+                continue;
+            };
+            let material = match material_index.get(material_key.get_ref().as_str()) {
                 Some(&i) => i,
                 None => {
                     let known: Vec<&str> = materials.iter().map(|(n, _)| n.as_str()).collect();
                     return Err(self.invalid(
-                        r.material.span(),
+                        material_key.span(),
                         format!(
                             "shape {name:?}: unknown material {:?} (materials: {})",
-                            r.material.get_ref(),
+                            material_key.get_ref(),
                             if known.is_empty() {
                                 "none defined".to_owned()
                             } else {
@@ -294,7 +365,7 @@ impl Cx<'_> {
         &self,
         what: &str,
         name: &'n Spanned<String>,
-        seen: &HashMap<&str, usize>,
+        seen: &HashMap<String, usize>,
     ) -> Result<&'n str, SceneError> {
         let n = name.get_ref().as_str();
         if n.is_empty() {
@@ -575,19 +646,7 @@ impl Cx<'_> {
                 })
             }
             "mesh" => {
-                self.only_keys(
-                    label,
-                    "a mesh",
-                    &keys,
-                    &[
-                        "path",
-                        "positions",
-                        "triangles",
-                        "translate",
-                        "scale",
-                        "rotate_y_deg",
-                    ],
-                )?;
+                self.mesh_keys(label, &keys)?;
                 self.mesh(raw, label)
             }
             other => Err(self.invalid(
@@ -600,8 +659,100 @@ impl Cx<'_> {
         }
     }
 
-    fn mesh(&mut self, raw: &Spanned<RawShape>, label: &str) -> Result<Shape, SceneError> {
+    fn mesh_keys(
+        &self,
+        label: &str,
+        keys: &[(&'static str, Range<usize>)],
+    ) -> Result<(), SceneError> {
+        self.only_keys(
+            label,
+            "a mesh",
+            keys,
+            &[
+                "path",
+                "positions",
+                "triangles",
+                "translate",
+                "scale",
+                "rotate_y_deg",
+            ],
+        )
+    }
+
+    /// The parts of a glTF mesh shape that names no `material`: each part's mesh with the
+    /// index of its material among the file's (label, material) pairs.
+    #[allow(clippy::type_complexity)]
+    fn gltf_parts(
+        &mut self,
+        raw: &Spanned<RawShape>,
+        name: &str,
+    ) -> Result<(Vec<(String, Material)>, Vec<(crate::TriangleMesh, usize)>), SceneError> {
         let r = raw.get_ref();
+        let label = &format!("shape {name:?}");
+        let keys = present_keys!(
+            r,
+            center,
+            radius,
+            corner,
+            edge_u,
+            edge_v,
+            point,
+            normal,
+            path,
+            positions,
+            triangles,
+            translate,
+            scale,
+            rotate_y_deg
+        );
+        self.mesh_keys(label, &keys)?;
+        let transform = self.mesh_transform(r, label)?;
+        let Some(path) = &r.path else {
+            return Err(self.invalid(raw.span(), format!("{label}: missing `path`")));
+        };
+        let file = match self.base_dir {
+            Some(dir) => dir.join(path.get_ref()),
+            None => Path::new(path.get_ref()).to_owned(),
+        };
+        let imported = mesh_import::import_mesh_parts(&file, &transform).map_err(|e| {
+            self.err(
+                path.span(),
+                SceneErrorKind::Mesh,
+                format!("{label}: mesh {:?}: {e}", path.get_ref()),
+            )
+        })?;
+        let mut parts = Vec::with_capacity(imported.parts.len());
+        let mut kept = 0;
+        for part in imported.parts {
+            kept += part.mesh.triangles.len();
+            match part.material {
+                Some(m) => parts.push((part.mesh, m)),
+                None => {
+                    return Err(self.err(
+                        path.span(),
+                        SceneErrorKind::Mesh,
+                        format!(
+                            "{label}: mesh {:?}: {} triangles belong to glTF primitives with \
+                             no material; give the shape a `material` (it then applies to the \
+                             whole file)",
+                            path.get_ref(),
+                            part.mesh.triangles.len()
+                        ),
+                    ));
+                }
+            }
+        }
+        if imported.degenerate_dropped > 0 {
+            let line = line_of(self.text, raw.span().start);
+            self.notes.push(format!(
+                "{}:{line}: {label}: dropped {} degenerate (zero-area) triangles, kept {kept}",
+                self.origin, imported.degenerate_dropped,
+            ));
+        }
+        Ok((imported.materials, parts))
+    }
+
+    fn mesh_transform(&self, r: &RawShape, label: &str) -> Result<MeshTransform, SceneError> {
         let mut transform = MeshTransform::default();
         if let Some(t) = &r.translate {
             transform.translate = self.vec3(label, "translate", t)?;
@@ -619,6 +770,12 @@ impl Cx<'_> {
         if let Some(a) = &r.rotate_y_deg {
             transform.rotate_y_deg = self.number(label, "rotate_y_deg", a)?;
         }
+        Ok(transform)
+    }
+
+    fn mesh(&mut self, raw: &Spanned<RawShape>, label: &str) -> Result<Shape, SceneError> {
+        let r = raw.get_ref();
+        let transform = self.mesh_transform(r, label)?;
         let imported = match (&r.path, &r.positions, &r.triangles) {
             (Some(path), None, None) => {
                 let file = match self.base_dir {

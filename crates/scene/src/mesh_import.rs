@@ -1,8 +1,9 @@
 //! Mesh import: Wavefront OBJ files (positions and faces) and glTF 2.0 files (`.gltf`,
-//! `.glb`: meshes placed by their nodes) turned into a world-space [`TriangleMesh`], and the checks every mesh goes through (also inline meshes written in a
+//! `.glb`: meshes placed by their nodes, split by glTF material) turned into world-space
+//! [`TriangleMesh`]es, and the checks every mesh goes through (also inline meshes written in a
 //! scene file): finite vertices, indices in range, degenerate triangles dropped, not empty.
 
-use crate::TriangleMesh;
+use crate::{Material, TriangleMesh};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
 
@@ -87,26 +88,125 @@ pub enum MeshImportError {
     Invalid { path: PathBuf, problem: MeshProblem },
 }
 
+/// One material's share of a mesh file, ready for a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshPart {
+    /// Index into [`ImportedParts::materials`]; `None` for triangles without a material
+    /// (all of an OBJ file; glTF primitives that name no material).
+    pub material: Option<usize>,
+    pub mesh: TriangleMesh,
+}
+
+/// A mesh file split by material: what [`import_mesh_parts`] returns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImportedParts {
+    /// The file's materials, in the file's order, each with a label (the glTF material's
+    /// name, or its index when it has none or repeats an earlier name) and its mapping onto
+    /// the Whitted model (see `docs/scene-format.md`). Empty for OBJ files.
+    pub materials: Vec<(String, Material)>,
+    /// One part per material used, in order of first use; never empty.
+    pub parts: Vec<MeshPart>,
+    /// Triangles dropped because their area is zero, over all parts (a part whose
+    /// triangles are all degenerate is dropped whole while another part is left).
+    pub degenerate_dropped: usize,
+}
+
 /// Reads the mesh file at `path` (OBJ or glTF, chosen by the extension) and places it
-/// with `transform`.
+/// with `transform`, all of its triangles merged into one mesh (the file's materials are
+/// not read).
 pub fn import_mesh(
     path: &Path,
     transform: &MeshTransform,
 ) -> Result<ImportedMesh, MeshImportError> {
+    let (_, groups) = read_file(path)?;
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for (_, p, t) in groups {
+        let base = positions.len() as u32;
+        positions.extend(p);
+        triangles.extend(t.into_iter().map(|tri| tri.map(|i| base + i)));
+    }
+    build_mesh(positions, triangles, transform).map_err(|problem| MeshImportError::Invalid {
+        path: path.to_owned(),
+        problem,
+    })
+}
+
+/// As [`import_mesh`], but split by material: one part per glTF material (with the
+/// materials themselves), or a single part without a material for an OBJ file.
+pub fn import_mesh_parts(
+    path: &Path,
+    transform: &MeshTransform,
+) -> Result<ImportedParts, MeshImportError> {
+    let (materials, groups) = read_file(path)?;
+    let invalid = |problem| MeshImportError::Invalid {
+        path: path.to_owned(),
+        problem,
+    };
+    if groups.len() <= 1 {
+        let (material, p, t) = groups
+            .into_iter()
+            .next()
+            .unwrap_or((None, Vec::new(), Vec::new()));
+        let m = build_mesh(p, t, transform).map_err(invalid)?;
+        return Ok(ImportedParts {
+            materials,
+            parts: vec![MeshPart {
+                material,
+                mesh: m.mesh,
+            }],
+            degenerate_dropped: m.degenerate_dropped,
+        });
+    }
+    let mut parts = Vec::new();
+    let mut dropped = 0;
+    for (material, p, t) in groups {
+        match build_mesh(p, t, transform) {
+            Ok(m) => {
+                dropped += m.degenerate_dropped;
+                parts.push(MeshPart {
+                    material,
+                    mesh: m.mesh,
+                });
+            }
+            Err(MeshProblem::AllDegenerate(n)) => dropped += n,
+            Err(MeshProblem::Empty) => {}
+            Err(problem) => return Err(invalid(problem)),
+        }
+    }
+    if parts.is_empty() {
+        return Err(invalid(if dropped > 0 {
+            MeshProblem::AllDegenerate(dropped)
+        } else {
+            MeshProblem::Empty
+        }));
+    }
+    Ok(ImportedParts {
+        materials,
+        parts,
+        degenerate_dropped: dropped,
+    })
+}
+
+/// Raw triangle groups of a mesh file (each with its material, if any) and its materials.
+type Groups = Vec<(Option<usize>, Vec<Vec3>, Vec<[u32; 3]>)>;
+
+fn read_file(path: &Path) -> Result<(Vec<(String, Material)>, Groups), MeshImportError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let (positions, triangles) = match extension.as_deref() {
+    match extension.as_deref() {
         Some("obj") => {
             let text = std::fs::read_to_string(path).map_err(|source| MeshImportError::Read {
                 path: path.to_owned(),
                 source,
             })?;
-            parse_obj(&text).map_err(|reason| MeshImportError::Obj {
+            let (p, t) = parse_obj(&text).map_err(|reason| MeshImportError::Obj {
                 path: path.to_owned(),
                 reason,
-            })?
+            })?;
+            Ok((Vec::new(), vec![(None, p, t)]))
         }
         Some("gltf" | "glb") => {
             if let Err(source) = std::fs::metadata(path) {
@@ -115,21 +215,29 @@ pub fn import_mesh(
                     source,
                 });
             }
-            crate::gltf_import::read_gltf(path).map_err(|reason| MeshImportError::Gltf {
-                path: path.to_owned(),
-                reason,
-            })?
+            let data =
+                crate::gltf_import::read_gltf(path).map_err(|reason| MeshImportError::Gltf {
+                    path: path.to_owned(),
+                    reason,
+                })?;
+            let groups = data
+                .groups
+                .into_iter()
+                .map(|g| (g.material, g.positions, g.triangles))
+                .collect();
+            Ok((data.materials, groups))
         }
-        _ => {
-            return Err(MeshImportError::Unsupported {
-                path: path.to_owned(),
-            });
-        }
-    };
-    build_mesh(positions, triangles, transform).map_err(|problem| MeshImportError::Invalid {
-        path: path.to_owned(),
-        problem,
-    })
+        _ => Err(MeshImportError::Unsupported {
+            path: path.to_owned(),
+        }),
+    }
+}
+
+/// Whether `path` names a glTF file (`.gltf` or `.glb`, any case), whose materials are read.
+pub fn is_gltf_path(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
 }
 
 /// Positions and triangles of OBJ text, all objects and groups merged, polygons fanned into

@@ -1,0 +1,36 @@
+//! The repository's `scenes/bunny-cornell.toml`: the Stanford bunny (from `../shared/meshes`)
+//! in a Cornell box.
+
+use std::path::Path;
+use steadyray_scene::{Shape, load_scene_file};
+
+#[test]
+fn bunny_cornell_loads_with_all_triangles() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mesh = root.join("../shared/meshes/stanford-bunny.obj");
+    if !mesh.exists() {
+        eprintln!(
+            "skipping: {} is missing (the shared meshes sit beside the repository)",
+            mesh.display()
+        );
+        return;
+    }
+    let scene = load_scene_file(&root.join("scenes/bunny-cornell.toml")).unwrap();
+    let meshes: Vec<_> = scene
+        .objects
+        .iter()
+        .filter_map(|o| match &o.shape {
+            Shape::Mesh(m) => Some(m),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(meshes.len(), 1);
+    assert_eq!(meshes[0].triangles.len(), 69_451);
+    // The bunny sits on the floor (y = 0) inside the box.
+    let min_y = meshes[0]
+        .positions
+        .iter()
+        .map(|p| p.y)
+        .fold(f32::INFINITY, f32::min);
+    assert!(min_y.abs() < 0.02, "bunny's lowest point {min_y}");
+}
