@@ -184,6 +184,28 @@ macro_rules! present_keys {
     }};
 }
 
+impl RawShape {
+    /// The optional keys this shape entry sets, with their spans, for the per-type checks.
+    fn present_keys(&self) -> Vec<(&'static str, Range<usize>)> {
+        present_keys!(
+            self,
+            center,
+            radius,
+            corner,
+            edge_u,
+            edge_v,
+            point,
+            normal,
+            path,
+            positions,
+            triangles,
+            translate,
+            scale,
+            rotate_y_deg
+        )
+    }
+}
+
 /// Parsing context: the file (for messages and mesh paths) and the notes gathered so far.
 struct Cx<'a> {
     origin: &'a str,
@@ -574,22 +596,7 @@ impl Cx<'_> {
     fn shape(&mut self, raw: &Spanned<RawShape>, name: &str) -> Result<Shape, SceneError> {
         let r = raw.get_ref();
         let label = &format!("shape {name:?}");
-        let keys = present_keys!(
-            r,
-            center,
-            radius,
-            corner,
-            edge_u,
-            edge_v,
-            point,
-            normal,
-            path,
-            positions,
-            triangles,
-            translate,
-            scale,
-            rotate_y_deg
-        );
+        let keys = r.present_keys();
         match r.kind.get_ref().as_str() {
             "sphere" => {
                 self.only_keys(label, "a sphere", &keys, &["center", "radius"])?;
@@ -689,22 +696,7 @@ impl Cx<'_> {
     ) -> Result<(Vec<(String, Material)>, Vec<(crate::TriangleMesh, usize)>), SceneError> {
         let r = raw.get_ref();
         let label = &format!("shape {name:?}");
-        let keys = present_keys!(
-            r,
-            center,
-            radius,
-            corner,
-            edge_u,
-            edge_v,
-            point,
-            normal,
-            path,
-            positions,
-            triangles,
-            translate,
-            scale,
-            rotate_y_deg
-        );
+        let keys = r.present_keys();
         self.mesh_keys(label, &keys)?;
         let transform = self.mesh_transform(r, label)?;
         let Some(path) = &r.path else {
