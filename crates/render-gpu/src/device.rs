@@ -54,6 +54,20 @@ impl GpuContext {
         })
     }
 
+    /// The device as reports and logs name it: adapter name, graphics API and driver, e.g.
+    /// "llvmpipe (LLVM 15.0.6, 256 bits) (vulkan, llvmpipe Mesa 22.3.6 (LLVM 15.0.6))".
+    pub(crate) fn description(&self) -> String {
+        let info = &self.info;
+        format!(
+            "{} ({}, {} {})",
+            info.name,
+            info.backend.to_str(),
+            info.driver,
+            info.driver_info
+        )
+        .replace(" )", ")")
+    }
+
     /// Submits `commands` and waits for the GPU to finish them, surfacing validation errors,
     /// device loss and uncaptured errors as [`RenderError::Gpu`].
     pub(crate) fn submit_and_wait(&self, commands: wgpu::CommandBuffer) -> Result<(), RenderError> {

@@ -22,6 +22,12 @@ pub const COUNTER_SLOTS: u32 = MAX_DEPTH + 3;
 /// Threads of the ray-count reduction workgroup.
 pub const REDUCE_SIZE: u32 = 256;
 
+/// The ray caster's workgroups are `CAST_TILE` × `CAST_TILE` threads (one pixel tile of
+/// primary rays, or `CAST_TILE`² rays of a list).
+pub const CAST_TILE: u32 = 8;
+/// [`GpuCastHit::id`] of a ray that hits nothing.
+pub const CAST_MISS: u32 = u32::MAX;
+
 /// [`GpuShape::kind`] of a sphere.
 pub const SHAPE_SPHERE: u32 = 0;
 /// [`GpuShape::kind`] of a quad.
@@ -135,6 +141,48 @@ pub struct GpuLight {
     pub pad1: f32,
 }
 
+/// The ray caster's uniform (WGSL `CastParams`): the camera frame of the primary rays
+/// (`steadyray_scene::CameraFrame` for a `width` × `height` image), the image's
+/// [`CAST_TILE`]-pixel tiles, the number of rays of a list and the mesh's triangle count.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCastParams {
+    pub eye: [f32; 3],
+    pub half_width: f32,
+    pub forward: [f32; 3],
+    pub half_height: f32,
+    pub right: [f32; 3],
+    pub width: u32,
+    pub true_up: [f32; 3],
+    pub height: u32,
+    /// Tiles per image row.
+    pub tiles_x: u32,
+    /// Tiles in the image.
+    pub tile_count: u32,
+    /// Rays in the ray list.
+    pub ray_count: u32,
+    pub triangle_count: u32,
+}
+
+/// A ray of a ray list (WGSL `CastRay`): origin + t·dir, hit on t in (T_MIN, ∞).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCastRay {
+    pub origin: [f32; 3],
+    pub pad0: u32,
+    pub dir: [f32; 3],
+    pub pad1: u32,
+}
+
+/// A ray's closest hit (WGSL `CastHit`): t and the triangle's input index, or
+/// `id == CAST_MISS` for a miss.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCastHit {
+    pub t: f32,
+    pub id: u32,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -152,8 +200,29 @@ mod tests {
     }
 
     fn wgsl_module() -> naga::Module {
-        naga::front::wgsl::parse_str(crate::pipeline::SHADER_SOURCE)
-            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(crate::pipeline::SHADER_SOURCE)))
+        parse(crate::pipeline::SHADER_SOURCE)
+    }
+
+    fn parse(source: &str) -> naga::Module {
+        naga::front::wgsl::parse_str(source)
+            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
+    }
+
+    /// Both modules (the renderer's and the ray caster's) parse and validate without a GPU.
+    #[test]
+    fn wgsl_modules_validate() {
+        for source in [
+            crate::pipeline::SHADER_SOURCE,
+            crate::pipeline::RAYCAST_SOURCE,
+        ] {
+            let module = parse(source);
+            naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            )
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+        }
     }
 
     fn wgsl_struct(module: &naga::Module, name: &str) -> (usize, Vec<(String, usize)>) {
@@ -263,6 +332,33 @@ mod tests {
                     pad1
                 }),
             ),
+            (
+                "CastParams",
+                rust_layout!(GpuCastParams {
+                    eye,
+                    half_width,
+                    forward,
+                    half_height,
+                    right,
+                    width,
+                    true_up,
+                    height,
+                    tiles_x,
+                    tile_count,
+                    ray_count,
+                    triangle_count,
+                }),
+            ),
+            (
+                "CastRay",
+                rust_layout!(GpuCastRay {
+                    origin,
+                    pad0,
+                    dir,
+                    pad1
+                }),
+            ),
+            ("CastHit", rust_layout!(GpuCastHit { t, id })),
         ];
         for (name, (size, fields)) in rust {
             let (wgsl_size, wgsl_fields) = wgsl_struct(&module, name);
@@ -295,6 +391,8 @@ mod tests {
             ("COUNTER_SLOTS", COUNTER_SLOTS),
             ("REDUCE_SIZE", REDUCE_SIZE),
             ("BVH_STACK_SIZE", BVH_STACK_SIZE),
+            ("CAST_TILE", CAST_TILE),
+            ("CAST_MISS", CAST_MISS),
             ("SHAPE_SPHERE", SHAPE_SPHERE),
             ("SHAPE_QUAD", SHAPE_QUAD),
             ("SHAPE_PLANE", SHAPE_PLANE),

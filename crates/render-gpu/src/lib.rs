@@ -4,6 +4,8 @@
 //!
 //! [`list_adapters`] tells a caller whether a real GPU is present; [`GpuRenderer::new`]
 //! opens one (chosen by [`GpuOptions`]) and implements [`steadyray_render::Renderer`].
+//! [`GpuRayCaster`] casts rays through a mesh's BVH alone, with the renderer's traversal, for
+//! `steadyray raybench`.
 
 mod adapter;
 mod buffers;
@@ -11,12 +13,14 @@ mod device;
 mod error;
 pub mod layout;
 mod pipeline;
+mod raycast;
 mod renderer;
 mod scene_buffers;
 mod surface;
 mod timing;
 
 pub use adapter::{AdapterSummary, DeviceKind, GpuOptions, list_adapters};
+pub use raycast::{CastOutcome, GpuRayCaster};
 pub use renderer::GpuRenderer;
 pub use renderer::display::DisplayImage;
 pub use surface::{display_instance, surface_adapter};

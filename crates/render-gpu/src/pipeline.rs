@@ -4,18 +4,30 @@
 use crate::error::scoped;
 use steadyray_render::RenderError;
 
-/// The whole WGSL module: layouts, sampling rules, geometry, integrator, count reduction
-/// and tone map.
+/// The renderer's WGSL module: layouts and its bindings, sampling rules, eye rays, the
+/// triangle BVH queries, geometry, integrator, count reduction and tone map.
 pub(crate) const SHADER_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
+    include_str!("shaders/render_bindings.wgsl"),
     include_str!("shaders/sampling.wgsl"),
+    include_str!("shaders/camera.wgsl"),
+    include_str!("shaders/traversal.wgsl"),
     include_str!("shaders/geometry.wgsl"),
     include_str!("shaders/integrator.wgsl"),
     include_str!("shaders/counts.wgsl"),
     include_str!("shaders/tonemap.wgsl"),
 );
 
-/// Bindings of group 0, as declared in `shaders/layout.wgsl`.
+/// The ray caster's WGSL module ([`crate::GpuRayCaster`]): layouts, eye rays and the same
+/// triangle BVH queries as [`SHADER_SOURCE`], with the casting kernels and their bindings.
+pub(crate) const RAYCAST_SOURCE: &str = concat!(
+    include_str!("shaders/layout.wgsl"),
+    include_str!("shaders/camera.wgsl"),
+    include_str!("shaders/traversal.wgsl"),
+    include_str!("shaders/raycast.wgsl"),
+);
+
+/// Bindings of group 0, as declared in `shaders/render_bindings.wgsl`.
 pub(crate) mod binding {
     pub const FRAME: u32 = 0;
     pub const SHAPES: u32 = 1;
@@ -40,7 +52,11 @@ pub(crate) struct Pipelines {
     pub(crate) tonemap: wgpu::ComputePipeline,
 }
 
-fn layout_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
+/// A storage or uniform buffer binding visible to compute shaders.
+pub(crate) fn layout_entry(
+    binding: u32,
+    ty: wgpu::BufferBindingType,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,

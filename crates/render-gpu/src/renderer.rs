@@ -227,17 +227,9 @@ fn parse_totals(bytes: &[u8]) -> Vec<u64> {
 
 impl Renderer for GpuRenderer {
     fn info(&self) -> BackendInfo {
-        let info = &self.ctx.info;
         BackendInfo {
             backend: "gpu".to_string(),
-            device: format!(
-                "{} ({}, {} {})",
-                info.name,
-                info.backend.to_str(),
-                info.driver,
-                info.driver_info
-            )
-            .replace(" )", ")"),
+            device: self.ctx.description(),
         }
     }
 

@@ -9,6 +9,15 @@ use steadyray_render_gpu::{GpuOptions, GpuRenderer, list_adapters};
 /// The environment variable that selects a GPU adapter by (part of) its name.
 pub const ADAPTER_ENV: &str = "STEADYRAY_ADAPTER";
 
+/// The adapter options of an explicit `--backend gpu`: any adapter that can run the compute
+/// shaders, software ones such as lavapipe included, narrowed by `STEADYRAY_ADAPTER`.
+pub fn requested_gpu_options() -> GpuOptions {
+    GpuOptions {
+        adapter_name: std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty()),
+        allow_software: true,
+    }
+}
+
 /// Creates the renderer `choice` asks for, saying on stderr which one it picked and why.
 pub fn create_renderer(choice: BackendChoice) -> Result<Box<dyn Renderer>> {
     let adapter_name = std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty());
@@ -18,11 +27,8 @@ pub fn create_renderer(choice: BackendChoice) -> Result<Box<dyn Renderer>> {
             Ok(Box::new(CpuRenderer::new()))
         }
         BackendChoice::Gpu => {
-            let options = GpuOptions {
-                adapter_name,
-                allow_software: true,
-            };
-            let gpu = GpuRenderer::new(&options).context("the gpu backend is not available")?;
+            let gpu = GpuRenderer::new(&requested_gpu_options())
+                .context("the gpu backend is not available")?;
             eprintln!(
                 "steadyray: backend gpu on {} (asked for)",
                 gpu.info().device

@@ -90,6 +90,20 @@ fn trace_sample(px: u32, py: u32, sample: u32, eye: vec3<f32>, dir: vec3<f32>) -
     return radiance;
 }
 
+// The eye ray direction through pixel (px, py) at sub-pixel offset uv in this frame.
+fn eye_ray_dir(px: u32, py: u32, uv: vec2<f32>) -> vec3<f32> {
+    return pixel_ray_dir(
+        frame.forward,
+        frame.right,
+        frame.true_up,
+        vec2<f32>(frame.half_width, frame.half_height),
+        vec2<u32>(frame.width, frame.height),
+        px,
+        py,
+        uv,
+    );
+}
+
 fn render_pixel(px: u32, py: u32) {
     shadow_rays = 0u;
     let n = samples_for_pixel(px, py, frame.spp);

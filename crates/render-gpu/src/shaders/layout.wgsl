@@ -1,5 +1,7 @@
 // GPU data layouts, mirrored field for field by the `#[repr(C)]` structs of `src/layout.rs`
 // (the test `layout::tests::wgsl_layouts_match_rust` checks sizes, offsets and constants).
+// Every module includes this file first; the bindings are declared per module
+// (render_bindings.wgsl, raycast.wgsl).
 
 const WORKGROUP_SIZE: u32 = 8u;
 // The largest depth R (steadyray_render::MAX_DEPTH).
@@ -11,6 +13,11 @@ const COUNTER_SLOTS: u32 = 67u;
 const REDUCE_SIZE: u32 = 256u;
 // Entries of the BVH traversal stack (steadyray_accel::FLAT_STACK_SIZE).
 const BVH_STACK_SIZE: u32 = 64u;
+
+// The ray caster (raycast.wgsl): CAST_TILE × CAST_TILE threads per workgroup, one pixel
+// each; CAST_MISS is the triangle id of a ray that hits nothing.
+const CAST_TILE: u32 = 8u;
+const CAST_MISS: u32 = 0xffffffffu;
 
 const SHAPE_SPHERE: u32 = 0u;
 const SHAPE_QUAD: u32 = 1u;
@@ -104,18 +111,34 @@ struct Light {
     pad1: f32,
 }
 
-@group(0) @binding(0) var<uniform> frame: Frame;
-@group(0) @binding(1) var<storage, read> shapes: array<Shape>;
-@group(0) @binding(2) var<storage, read> triangles: array<Triangle>;
-@group(0) @binding(3) var<storage, read> materials: array<Material>;
-@group(0) @binding(4) var<storage, read> lights: array<Light>;
-// Linear RGBA radiance, row-major, top row first.
-@group(0) @binding(5) var<storage, read_write> image: array<vec4<f32>>;
-// counter_stride counters per workgroup: rays at depth 0..=R, shadow rays, shadow carries.
-@group(0) @binding(6) var<storage, read_write> group_counts: array<u32>;
-// The frame's totals per counter as 64-bit (low, high) pairs.
-@group(0) @binding(7) var<storage, read_write> totals: array<vec2<u32>>;
-// The tone-mapped image, one packed RGBA8 (R in the low byte) per pixel.
-@group(0) @binding(8) var<storage, read_write> srgb8: array<u32>;
-// The triangle BVH over `triangles` (empty when there are none).
-@group(0) @binding(9) var<storage, read> bvh_nodes: array<BvhNode>;
+// The ray caster's settings (GpuCastParams): the camera frame of the primary rays
+// (CameraFrame of spec/corridor.md), the image size in pixels and CAST_TILE tiles, and the
+// number of rays of a cast_rays dispatch.
+struct CastParams {
+    eye: vec3<f32>,
+    half_width: f32,
+    forward: vec3<f32>,
+    half_height: f32,
+    right: vec3<f32>,
+    width: u32,
+    true_up: vec3<f32>,
+    height: u32,
+    tiles_x: u32,
+    tile_count: u32,
+    ray_count: u32,
+    triangle_count: u32,
+}
+
+// A ray for cast_rays (GpuCastRay): origin + t·dir, t in (T_MIN, ∞).
+struct CastRay {
+    origin: vec3<f32>,
+    pad0: u32,
+    dir: vec3<f32>,
+    pad1: u32,
+}
+
+// A ray's closest hit (GpuCastHit): its t and the triangle's input index, or CAST_MISS.
+struct CastHit {
+    t: f32,
+    id: u32,
+}

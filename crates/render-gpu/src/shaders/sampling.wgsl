@@ -54,15 +54,3 @@ fn samples_for_pixel(px: u32, py: u32, spp: f32) -> u32 {
     let threshold = (f32(BAYER8[(py & 7u) * 8u + (px & 7u)]) + 0.5) / 64.0;
     return u32(whole) + select(0u, 1u, frac > threshold);
 }
-
-// glam's Vec3::normalize: v * (1 / sqrt(dot(v, v))), written out so both backends round alike.
-fn unit(v: vec3<f32>) -> vec3<f32> {
-    return v * (1.0 / sqrt(v.x * v.x + v.y * v.y + v.z * v.z));
-}
-
-// CameraFrame::ray_dir of spec/corridor.md.
-fn eye_ray_dir(px: u32, py: u32, uv: vec2<f32>) -> vec3<f32> {
-    let sx = (2.0 * (f32(px) + uv.x) / f32(frame.width) - 1.0) * frame.half_width;
-    let sy = (1.0 - 2.0 * (f32(py) + uv.y) / f32(frame.height)) * frame.half_height;
-    return unit(frame.forward + sx * frame.right + sy * frame.true_up);
-}

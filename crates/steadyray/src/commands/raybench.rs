@@ -5,8 +5,14 @@
 //! traces the same rays). Both sets are traced `--reps` times for their closest hit; the
 //! command prints one JSON line with the triangle count, load and build times, the median
 //! rays per second of each set (the BVH build excluded), the hit fractions, the thread
-//! count and the camera.
+//! count (CPU) or the device (GPU), how the time was taken and the camera.
+//!
+//! On the GPU (`--backend gpu`, [`GpuRayCaster`]) the mesh is uploaded once, primary rays
+//! are generated in the kernel, bounce rays are made on the host from the primary hits and
+//! uploaded, and each repetition is one dispatch timed by GPU timestamps (the kernel alone:
+//! no upload or readback), after an untimed warm-up.
 
+use crate::backend::requested_gpu_options;
 use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use glam::{Vec3, Vec3A};
@@ -15,15 +21,21 @@ use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::time::Instant;
 use steadyray_accel::Bvh;
+use steadyray_render::TimingSource;
 use steadyray_render::sampling::{pcg_hash, unit_from_hash};
+use steadyray_render_gpu::layout::GpuCastRay;
+use steadyray_render_gpu::{CastOutcome, GpuRayCaster};
 use steadyray_scene::Camera;
 use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
 
 /// Where `raybench` traces its rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum RaybenchBackend {
-    /// The 4-wide BVH on the CPU, one rayon task per image row.
+    /// The 4-wide BVH on the CPU, rayon tasks over chunks of rays.
     Cpu,
+    /// The binary BVH in WGSL on a GPU adapter (software ones such as lavapipe included;
+    /// `STEADYRAY_ADAPTER=name` picks one by name).
+    Gpu,
 }
 
 #[derive(Debug, Args)]
@@ -47,7 +59,8 @@ pub struct RaybenchArgs {
     /// Timed repetitions of each ray set; the median is reported.
     #[arg(long, default_value_t = 5)]
     pub reps: u32,
-    /// Worker threads on the CPU (0: one per available CPU).
+    /// Worker threads on the CPU, for the BVH build and CPU tracing (0: one per available
+    /// CPU).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
     /// Seed of the bounce directions.
@@ -129,7 +142,15 @@ struct Report {
     width: u32,
     height: u32,
     reps: u32,
-    threads: usize,
+    /// Worker threads (CPU backend only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    threads: Option<usize>,
+    /// The GPU adapter and driver (GPU backend only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    device: Option<String>,
+    /// How the rays/s were timed: "timestamps" (GPU timestamp queries around each
+    /// dispatch) or "wall" (the host clock around each repetition).
+    timing: &'static str,
     primary_rays: usize,
     primary_rays_per_s: f64,
     primary_hit_fraction: f64,
@@ -181,6 +202,52 @@ fn median(values: &[f64]) -> f64 {
     }
 }
 
+/// Where the rays are traced: the CPU's worker threads, or a GPU holding the mesh.
+enum Tracer {
+    Cpu,
+    Gpu(Box<GpuRayCaster>),
+}
+
+/// Rays per second of each timed repetition of `outcome` over `rays` rays.
+fn gpu_rates(outcome: &CastOutcome, rays: usize) -> Vec<f64> {
+    outcome
+        .times_ms
+        .iter()
+        .map(|&ms| rays as f64 / (ms * 1e-3))
+        .collect()
+}
+
+/// Stores the GPU's hits in `casts`, in order.
+fn take_hits(casts: &mut [Cast], outcome: &CastOutcome) {
+    for (cast, &hit) in casts.iter_mut().zip(&outcome.hits) {
+        cast.hit = hit;
+    }
+}
+
+/// One cosine-weighted bounce ray from each hit of `primary` (seeded by the ray's index and
+/// `seed`), leaving the surface on the side the primary ray came from.
+fn bounce_casts(primary: &[Cast], corners: &[[Vec3; 3]], seed: u32) -> Vec<Cast> {
+    primary
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| {
+            let (t, tri) = c.hit?;
+            let [a, b, cc] = corners[tri as usize].map(Vec3A::from);
+            let mut n = (b - a).cross(cc - a).normalize();
+            if n.dot(c.dir) > 0.0 {
+                n = -n;
+            }
+            let hash = pcg_hash(pcg_hash(i as u32) ^ seed);
+            let (u1, u2) = (unit_from_hash(hash), unit_from_hash(pcg_hash(hash)));
+            Some(Cast {
+                origin: c.origin + t * c.dir + n * steadyray_accel::T_MIN,
+                dir: cosine_direction(n, u1, u2),
+                hit: None,
+            })
+        })
+        .collect()
+}
+
 pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
     if args.width == 0 || args.height == 0 || args.reps == 0 {
         bail!("--width, --height and --reps must be at least 1");
@@ -202,10 +269,21 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
         .install(|| Bvh::build(&corners))
         .with_context(|| format!("mesh file {}", args.mesh.display()))?;
     let build_s = start.elapsed().as_secs_f64();
+    let mut tracer = match args.backend {
+        RaybenchBackend::Cpu => Tracer::Cpu,
+        RaybenchBackend::Gpu => {
+            let caster = GpuRayCaster::new(&requested_gpu_options(), &corners, &bvh)
+                .context("the gpu backend is not available")?;
+            eprintln!("steadyray: raybench on {}", caster.device_description());
+            Tracer::Gpu(Box::new(caster))
+        }
+    };
 
     let (w, h) = (args.width, args.height);
     let frame = spec.camera().frame(w, h);
     let eye = Vec3A::from(frame.eye);
+    // The GPU generates these directions itself (the same arithmetic); the host's copies
+    // place the bounce rays.
     let mut primary: Vec<Cast> = (0..h)
         .flat_map(|py| (0..w).map(move |px| (px, py)))
         .map(|(px, py)| Cast {
@@ -214,35 +292,44 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
             hit: None,
         })
         .collect();
-    let primary_rates = trace_all(&pool, &bvh, &mut primary, args.reps);
+    let mut timings = Vec::new();
+    let primary_rates = match &mut tracer {
+        Tracer::Cpu => trace_all(&pool, &bvh, &mut primary, args.reps),
+        Tracer::Gpu(caster) => {
+            let outcome = caster.cast_primary(&frame, w, h, args.reps)?;
+            take_hits(&mut primary, &outcome);
+            timings.push(outcome.timing);
+            gpu_rates(&outcome, primary.len())
+        }
+    };
 
-    let mut bounce: Vec<Cast> = primary
-        .iter()
-        .enumerate()
-        .filter_map(|(i, c)| {
-            let (t, tri) = c.hit?;
-            let [a, b, cc] = corners[tri as usize].map(Vec3A::from);
-            let mut n = (b - a).cross(cc - a).normalize();
-            if n.dot(c.dir) > 0.0 {
-                n = -n;
-            }
-            let hash = pcg_hash(pcg_hash(i as u32) ^ args.seed);
-            let (u1, u2) = (unit_from_hash(hash), unit_from_hash(pcg_hash(hash)));
-            Some(Cast {
-                origin: c.origin + t * c.dir + n * steadyray_accel::T_MIN,
-                dir: cosine_direction(n, u1, u2),
-                hit: None,
-            })
-        })
-        .collect();
-    let bounce_rates = trace_all(&pool, &bvh, &mut bounce, args.reps);
+    let mut bounce = bounce_casts(&primary, &corners, args.seed);
+    let bounce_rates = match &mut tracer {
+        Tracer::Cpu => trace_all(&pool, &bvh, &mut bounce, args.reps),
+        Tracer::Gpu(caster) => {
+            let rays: Vec<GpuCastRay> = bounce
+                .iter()
+                .map(|c| GpuCastRay::new(c.origin.into(), c.dir.into()))
+                .collect();
+            let outcome = caster.cast_rays(&rays, args.reps)?;
+            take_hits(&mut bounce, &outcome);
+            timings.push(outcome.timing);
+            gpu_rates(&outcome, bounce.len())
+        }
+    };
 
     let hit_fraction = |casts: &[Cast]| {
         casts.iter().filter(|c| c.hit.is_some()).count() as f64 / casts.len().max(1) as f64
     };
+    let timestamps =
+        !timings.is_empty() && timings.iter().all(|&t| t == TimingSource::GpuTimestamps);
+    let (backend, threads, device) = match &tracer {
+        Tracer::Cpu => ("cpu", Some(pool.current_num_threads()), None),
+        Tracer::Gpu(caster) => ("gpu", None, Some(caster.device_description())),
+    };
     let report = Report {
         mesh: args.mesh.display().to_string(),
-        backend: "cpu",
+        backend,
         triangles: bvh.triangle_count(),
         degenerate_dropped: imported.degenerate_dropped,
         load_s,
@@ -250,7 +337,9 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
         width: w,
         height: h,
         reps: args.reps,
-        threads: pool.current_num_threads(),
+        threads,
+        device,
+        timing: if timestamps { "timestamps" } else { "wall" },
         primary_rays: primary.len(),
         primary_rays_per_s: median(&primary_rates),
         primary_hit_fraction: hit_fraction(&primary),

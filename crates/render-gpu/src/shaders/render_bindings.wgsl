@@ -1,0 +1,18 @@
+// The integrator's bind group (src/pipeline.rs, `binding`): the frame, the scene, the image
+// and the ray counters.
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> shapes: array<Shape>;
+@group(0) @binding(2) var<storage, read> triangles: array<Triangle>;
+@group(0) @binding(3) var<storage, read> materials: array<Material>;
+@group(0) @binding(4) var<storage, read> lights: array<Light>;
+// Linear RGBA radiance, row-major, top row first.
+@group(0) @binding(5) var<storage, read_write> image: array<vec4<f32>>;
+// counter_stride counters per workgroup: rays at depth 0..=R, shadow rays, shadow carries.
+@group(0) @binding(6) var<storage, read_write> group_counts: array<u32>;
+// The frame's totals per counter as 64-bit (low, high) pairs.
+@group(0) @binding(7) var<storage, read_write> totals: array<vec2<u32>>;
+// The tone-mapped image, one packed RGBA8 (R in the low byte) per pixel.
+@group(0) @binding(8) var<storage, read_write> srgb8: array<u32>;
+// The triangle BVH over `triangles` (empty when there are none).
+@group(0) @binding(9) var<storage, read> bvh_nodes: array<BvhNode>;

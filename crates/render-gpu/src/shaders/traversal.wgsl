@@ -1,0 +1,257 @@
+// Ray queries against the triangle mesh, shared by the integrator (geometry.wgsl) and the ray
+// caster (raycast.wgsl): the watertight ray-triangle test and the traversal of the flattened
+// binary BVH, written as steadyray-accel writes them on the CPU so that both round alike.
+// Like the CPU's, the box tests are widened so that the traversal finds exactly the hits of
+// a loop over all triangles, and ties at the same t go to the lowest triangle id.
+//
+// The including module declares `triangles: array<Triangle>` (in BVH leaf order) and
+// `bvh_nodes: array<BvhNode>` (node 0 the root); callers skip the queries when there are no
+// triangles.
+
+// Rays hit on t in (T_MIN, t_max).
+const T_MIN: f32 = 1e-4;
+// "No hit": larger than any hit distance.
+const NO_HIT: f32 = 3.0e38;
+
+// A ray origin + t·dir; dir is near unit length but never renormalised.
+struct Ray {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+    inv_len2: f32,
+}
+
+fn make_ray(origin: vec3<f32>, dir: vec3<f32>) -> Ray {
+    return Ray(origin, dir, 1.0 / dot(dir, dir));
+}
+
+// The ray's shear for the watertight triangle test of Woop, Benthin and Wald (JCGT 2013):
+// its dominant axis kz becomes z and (sx, sy, sz) map its direction to +z.
+struct Shear {
+    kx: u32,
+    ky: u32,
+    kz: u32,
+    s: vec3<f32>,
+}
+
+fn make_shear(d: vec3<f32>) -> Shear {
+    let a = abs(d);
+    var kz = 0u;
+    var largest = a.x;
+    if a.y > largest {
+        largest = a.y;
+        kz = 1u;
+    }
+    if a.z > largest {
+        kz = 2u;
+    }
+    var kx = (kz + 1u) % 3u;
+    var ky = (kx + 1u) % 3u;
+    if d[kz] < 0.0 {
+        let swap = kx;
+        kx = ky;
+        ky = swap;
+    }
+    return Shear(kx, ky, kz, vec3<f32>(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]));
+}
+
+// p·q - r·s nearly exactly (Kahan's difference of products): the edge tie-break, where the
+// CPU reference recomputes in f64.
+fn diff_of_products(p: f32, q: f32, r: f32, s: f32) -> f32 {
+    let w = r * s;
+    let e = fma(-r, s, w);
+    let f = fma(p, q, -w);
+    return f + e;
+}
+
+// The watertight test: t of the hit of `tri` in (T_MIN, t_max), else NO_HIT.
+fn hit_triangle(tri: Triangle, origin: vec3<f32>, sh: Shear, t_max: f32) -> f32 {
+    let a = tri.v0 - origin;
+    let b = tri.v1 - origin;
+    let c = tri.v2 - origin;
+    let ax = a[sh.kx] - sh.s.x * a[sh.kz];
+    let ay = a[sh.ky] - sh.s.y * a[sh.kz];
+    let bx = b[sh.kx] - sh.s.x * b[sh.kz];
+    let by = b[sh.ky] - sh.s.y * b[sh.kz];
+    let cx = c[sh.kx] - sh.s.x * c[sh.kz];
+    let cy = c[sh.ky] - sh.s.y * c[sh.kz];
+    var u = cx * by - cy * bx;
+    var v = ax * cy - ay * cx;
+    var w = bx * ay - by * ax;
+    if u == 0.0 || v == 0.0 || w == 0.0 {
+        u = diff_of_products(cx, by, cy, bx);
+        v = diff_of_products(ax, cy, ay, cx);
+        w = diff_of_products(bx, ay, by, ax);
+    }
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return NO_HIT;
+    }
+    let det = u + v + w;
+    if det == 0.0 {
+        return NO_HIT;
+    }
+    let t_scaled = u * (sh.s.z * a[sh.kz]) + v * (sh.s.z * b[sh.kz]) + w * (sh.s.z * c[sh.kz]);
+    let t = t_scaled / det;
+    if t > T_MIN && t < t_max {
+        return t;
+    }
+    return NO_HIT;
+}
+
+// A BVH child reference: an inner node index, or LEAF_BIT | count << 27 | first.
+const LEAF_BIT: u32 = 0x80000000u;
+// Box tests widen the entry and exit distances by 2^-20 relative, as the CPU's do.
+const BOX_NEAR_SCALE: f32 = 0.99999904632568359375;
+const BOX_FAR_SCALE: f32 = 1.00000095367431640625;
+// A box the ray misses has this entry distance (above NO_HIT).
+const BOX_MISS: f32 = 3.4e38;
+
+fn child_ref(first: u32, count: u32) -> u32 {
+    return select(first, LEAF_BIT | (count << 27u) | first, count > 0u);
+}
+
+// A ray prepared for box tests. Zero direction components take no division: such a ray
+// lies in that axis' slab for every t when its origin is inside it (bounds included), and
+// for none otherwise.
+struct BoxRay {
+    origin: vec3<f32>,
+    inv: vec3<f32>,
+    flat: vec3<bool>,
+}
+
+fn make_box_ray(ray: Ray) -> BoxRay {
+    let flat = ray.dir == vec3<f32>(0.0);
+    return BoxRay(ray.origin, 1.0 / select(ray.dir, vec3<f32>(1.0), flat), flat);
+}
+
+// The widened entry distance of the box [lo, hi] when the ray meets it on [0, t_max],
+// else BOX_MISS.
+fn box_entry(lo: vec3<f32>, hi: vec3<f32>, br: BoxRay, t_max: f32) -> f32 {
+    let a = (lo - br.origin) * br.inv;
+    let b = (hi - br.origin) * br.inv;
+    let inside = br.origin >= lo & br.origin <= hi;
+    let t0 = select(min(a, b), select(vec3<f32>(BOX_MISS), vec3<f32>(-BOX_MISS), inside), br.flat);
+    let t1 = select(max(a, b), select(vec3<f32>(-BOX_MISS), vec3<f32>(BOX_MISS), inside), br.flat);
+    let near = max(max(t0.x, t0.y), max(t0.z, 0.0)) * BOX_NEAR_SCALE;
+    let far = min(min(t1.x, t1.y), t1.z) * BOX_FAR_SCALE;
+    return select(BOX_MISS, near, near <= min(far, t_max));
+}
+
+// The traversal stack: pending children and their box entry distances, one pending child
+// per tree level. It lives at module scope because WGSL zero-initialises every variable:
+// a function's array would be zeroed (2 × BVH_STACK_SIZE words of private memory) on every
+// query, a module-scope one once per invocation. The two queries below never nest.
+var<private> bvh_stack_ref: array<u32, BVH_STACK_SIZE>;
+var<private> bvh_stack_t: array<f32, BVH_STACK_SIZE>;
+
+// The nearest triangle hit of a ray: t, the triangle's position in `triangles` and its id.
+struct TriangleHit {
+    t: f32,
+    index: u32,
+    id: u32,
+}
+
+// The nearest triangle hit on t in (T_MIN, t_max), the lowest id among hits at the same t;
+// t = t_max when there is none (a hit exactly at t_max is not taken).
+fn closest_triangle(ray: Ray, t_max: f32) -> TriangleHit {
+    // id 0 at t_max lets no triangle tie the caller's bound.
+    var best = TriangleHit(t_max, 0u, 0u);
+    let sh = make_shear(ray.dir);
+    let br = make_box_ray(ray);
+    var sp = 0u;
+    var cur = 0u;
+    loop {
+        if (cur & LEAF_BIT) == 0u {
+            let node = bvh_nodes[cur];
+            let tl = box_entry(node.left_min, node.left_max, br, best.t);
+            let tr = box_entry(node.right_min, node.right_max, br, best.t);
+            let rl = child_ref(node.left_first, node.left_count);
+            let rr = child_ref(node.right_first, node.right_count);
+            if tl != BOX_MISS && tr != BOX_MISS {
+                // Nearer child first; the other waits on the stack with its entry distance.
+                let left_first = tl <= tr;
+                bvh_stack_ref[sp] = select(rl, rr, left_first);
+                bvh_stack_t[sp] = select(tl, tr, left_first);
+                sp++;
+                cur = select(rr, rl, left_first);
+                continue;
+            }
+            if tl != BOX_MISS {
+                cur = rl;
+                continue;
+            }
+            if tr != BOX_MISS {
+                cur = rr;
+                continue;
+            }
+        } else {
+            let first = cur & 0x07ffffffu;
+            let end = first + ((cur >> 27u) & 0xfu);
+            for (var k = first; k < end; k++) {
+                let tri = triangles[k];
+                let t = hit_triangle(tri, ray.origin, sh, NO_HIT);
+                if t < best.t || (t == best.t && tri.id < best.id) {
+                    best = TriangleHit(t, k, tri.id);
+                }
+            }
+        }
+        // Pop the next pending child that can still hold a closer hit.
+        var found = false;
+        while sp > 0u {
+            sp--;
+            if bvh_stack_t[sp] <= best.t {
+                cur = bvh_stack_ref[sp];
+                found = true;
+                break;
+            }
+        }
+        if !found {
+            break;
+        }
+    }
+    return best;
+}
+
+// Whether any triangle is hit on t in (T_MIN, t_max).
+fn any_triangle(ray: Ray, t_max: f32) -> bool {
+    let sh = make_shear(ray.dir);
+    let br = make_box_ray(ray);
+    var sp = 0u;
+    var cur = 0u;
+    loop {
+        if (cur & LEAF_BIT) == 0u {
+            let node = bvh_nodes[cur];
+            let hit_l = box_entry(node.left_min, node.left_max, br, t_max) != BOX_MISS;
+            let hit_r = box_entry(node.right_min, node.right_max, br, t_max) != BOX_MISS;
+            let rl = child_ref(node.left_first, node.left_count);
+            let rr = child_ref(node.right_first, node.right_count);
+            if hit_l && hit_r {
+                bvh_stack_ref[sp] = rr;
+                sp++;
+                cur = rl;
+                continue;
+            }
+            if hit_l {
+                cur = rl;
+                continue;
+            }
+            if hit_r {
+                cur = rr;
+                continue;
+            }
+        } else {
+            let first = cur & 0x07ffffffu;
+            let end = first + ((cur >> 27u) & 0xfu);
+            for (var k = first; k < end; k++) {
+                if hit_triangle(triangles[k], ray.origin, sh, t_max) < t_max {
+                    return true;
+                }
+            }
+        }
+        if sp == 0u {
+            return false;
+        }
+        sp--;
+        cur = bvh_stack_ref[sp];
+    }
+    return false;
+}
