@@ -1,17 +1,20 @@
 //! Building: obvhs's PLOC builder (with reinsertion and leaf collapse) over the triangles'
-//! boxes, then the two layouts: the binary [`FlatNode`] tree for the GPU and the 4-wide
+//! boxes, then the two layouts: the binary [`FlatNode`] tree for the GPU and the 8-wide
 //! tree for the CPU, over the same leaf order of triangles.
 
 use crate::flat::{FlatChild, FlatNode};
+use crate::tri4::Tri4;
 use crate::watertight::TriangleVerts;
-use crate::wide::{LEAF, MAX_LEAF_FIRST, Node4, STACK_SIZE, Wide};
+use crate::wide::{LEAF, STACK_SIZE, WIDTH, Wide, WideNode};
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
 
-/// Most triangles per leaf: a leaf's count has four bits in the 4-wide layout.
+/// Most triangles per leaf: one [`Tri4`] block.
 const MAX_LEAF_SIZE: u32 = 4;
+/// Most triangles a BVH holds: leaf-order positions and node indices stay below 2^27.
+const MAX_TRIANGLES: usize = 1 << 27;
 
 /// Why a BVH could not be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -73,14 +76,34 @@ fn emit_flat(bvh2: &Bvh2, i: usize, flat: &mut Vec<FlatNode>, depth: &mut usize)
     slot as u32
 }
 
-/// Appends the 4-wide node covering binary inner node `i`: its children, opened largest
-/// first until there are four; returns its index. `depth` counts the levels below it.
-fn emit_wide(bvh2: &Bvh2, i: usize, nodes: &mut Vec<Node4>, depth: &mut usize) -> u32 {
-    let slot = nodes.len();
-    nodes.push(Node4::EMPTY);
+/// The wide tree being laid out: its nodes and leaf blocks, and the triangles and input
+/// indices in leaf order that the blocks are cut from.
+struct WideOut<'a> {
+    nodes: Vec<WideNode>,
+    leaves: Vec<Tri4>,
+    leaf_tris: &'a [TriangleVerts],
+    ids: &'a [u32],
+}
+
+impl WideOut<'_> {
+    /// Appends the block of the `count` triangles from leaf-order position `first`; returns
+    /// its child reference.
+    fn leaf(&mut self, first: u32, count: u32) -> u32 {
+        let range = first as usize..(first + count) as usize;
+        self.leaves
+            .push(Tri4::new(&self.leaf_tris[range.clone()], &self.ids[range]));
+        LEAF | (self.leaves.len() - 1) as u32
+    }
+}
+
+/// Appends the wide node covering binary inner node `i`: its children, opened largest
+/// first until there are [`WIDTH`]; returns its index. `depth` counts the levels below it.
+fn emit_wide(bvh2: &Bvh2, i: usize, out: &mut WideOut, depth: &mut usize) -> u32 {
+    let slot = out.nodes.len();
+    out.nodes.push(WideNode::EMPTY);
     let first = bvh2.nodes[i].first_index as usize;
     let mut kids = vec![first, first + 1];
-    while kids.len() < 4 {
+    while kids.len() < WIDTH {
         let widest = kids
             .iter()
             .enumerate()
@@ -95,31 +118,28 @@ fn emit_wide(bvh2: &Bvh2, i: usize, nodes: &mut Vec<Node4>, depth: &mut usize) -
         let f = bvh2.nodes[k].first_index as usize;
         kids.extend([f, f + 1]);
     }
-    let mut node = Node4::EMPTY;
+    let mut node = WideNode::EMPTY;
     let mut below = 0;
     for (lane, &k) in kids.iter().enumerate() {
         let n = &bvh2.nodes[k];
-        for axis in 0..3 {
-            node.bounds[axis][lane] = n.aabb.min[axis];
-            node.bounds[axis + 3][lane] = n.aabb.max[axis];
-        }
+        node.set_box(lane, n.aabb.min.into(), n.aabb.max.into());
         node.child[lane] = if n.prim_count > 0 {
-            LEAF | (n.prim_count << 27) | n.first_index
+            out.leaf(n.first_index, n.prim_count)
         } else {
             let mut d = 0;
-            let c = emit_wide(bvh2, k, nodes, &mut d);
+            let c = emit_wide(bvh2, k, out, &mut d);
             below = below.max(d);
             c
         };
     }
     *depth = 1 + below;
-    nodes[slot] = node;
+    out.nodes[slot] = node;
     slot as u32
 }
 
 /// Both layouts of the tree over `tris` (input order), or empty ones for no triangles.
 pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<FlatNode>, Wide), BvhError> {
-    if tris.len() >= MAX_LEAF_FIRST as usize {
+    if tris.len() >= MAX_TRIANGLES {
         return Err(BvhError::TooManyTriangles(tris.len()));
     }
     if tris.is_empty() {
@@ -127,9 +147,15 @@ pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<FlatNode>, Wide), Bvh
     }
     let bvh2 = build_bvh2(tris);
     let ids = bvh2.primitive_indices.clone();
-    let leaf_tris = ids.iter().map(|&i| tris[i as usize]).collect();
+    let leaf_tris: Vec<TriangleVerts> = ids.iter().map(|&i| tris[i as usize]).collect();
+    let mut out = WideOut {
+        nodes: Vec::new(),
+        leaves: Vec::new(),
+        leaf_tris: &leaf_tris,
+        ids: &ids,
+    };
     let root = &bvh2.nodes[0];
-    let (flat, nodes) = if root.prim_count > 0 {
+    let flat = if root.prim_count > 0 {
         // A single leaf: one node whose two children (and first lane) are that leaf.
         let leaf = FlatChild {
             min: root.aabb.min.to_array(),
@@ -137,33 +163,25 @@ pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<FlatNode>, Wide), Bvh
             first: root.first_index,
             count: root.prim_count,
         };
-        let mut node = Node4::EMPTY;
-        for axis in 0..3 {
-            node.bounds[axis][0] = root.aabb.min[axis];
-            node.bounds[axis + 3][0] = root.aabb.max[axis];
-        }
-        node.child[0] = LEAF | (root.prim_count << 27) | root.first_index;
-        (vec![FlatNode::new(leaf, leaf)], vec![node])
+        let mut node = WideNode::EMPTY;
+        node.set_box(0, root.aabb.min.into(), root.aabb.max.into());
+        node.child[0] = out.leaf(root.first_index, root.prim_count);
+        out.nodes.push(node);
+        vec![FlatNode::new(leaf, leaf)]
     } else {
-        let (mut flat, mut nodes) = (Vec::new(), Vec::new());
+        let mut flat = Vec::new();
         let (mut flat_depth, mut wide_depth) = (0, 0);
         emit_flat(&bvh2, 0, &mut flat, &mut flat_depth);
-        emit_wide(&bvh2, 0, &mut nodes, &mut wide_depth);
-        // A 4-wide level spans at least one binary level, and pushes at most 3 entries.
+        emit_wide(&bvh2, 0, &mut out, &mut wide_depth);
+        // A wide level spans at least one binary level, and pushes at most WIDTH - 1 entries.
         debug_assert!(wide_depth <= flat_depth);
-        if flat_depth > crate::FLAT_STACK_SIZE || 3 * wide_depth + 1 > STACK_SIZE {
+        if flat_depth > crate::FLAT_STACK_SIZE || (WIDTH - 1) * wide_depth + 1 > STACK_SIZE {
             return Err(BvhError::TooDeep(flat_depth));
         }
-        (flat, nodes)
+        flat
     };
-    Ok((
-        flat,
-        Wide {
-            nodes,
-            tris: leaf_tris,
-            ids,
-        },
-    ))
+    let (nodes, leaves) = (out.nodes, out.leaves);
+    Ok((flat, Wide { nodes, leaves, ids }))
 }
 
 /// `tris` as plain arrays for the watertight test.

@@ -6,16 +6,19 @@
 //!
 //! - a binary tree of 64-byte [`FlatNode`]s holding both children's boxes, which the GPU
 //!   backend uploads and traverses in WGSL (`crates/render-gpu/src/shaders/geometry.wgsl`);
-//! - a 4-wide tree with structure-of-arrays child boxes, which [`Bvh::closest`] and
-//!   [`Bvh::any_hit`] traverse on the CPU.
+//! - an 8-wide tree with structure-of-arrays child boxes and leaves of four triangles in
+//!   structure-of-arrays lanes, which [`Bvh::closest`] and [`Bvh::any_hit`] traverse on the
+//!   CPU (with AVX2 where the CPU has it).
 //!
 //! Triangles are intersected with the watertight test of Woop, Benthin and Wald
 //! ([`WatertightRay`]); box tests are widened by a few ulps so that the BVH finds exactly
 //! the hits a brute-force loop over all triangles finds, ties included (the lowest input
 //! index wins among hits at the same t).
 
+mod box_test;
 mod build;
 mod flat;
+mod tri4;
 mod watertight;
 mod wide;
 
@@ -62,7 +65,7 @@ impl Bvh {
         &self.wide.ids
     }
 
-    /// The nodes of the CPU's 4-wide tree (a size measure).
+    /// The nodes of the CPU's 8-wide tree (a size measure).
     pub fn wide_node_count(&self) -> usize {
         self.wide.nodes.len()
     }

@@ -45,6 +45,24 @@ impl WatertightRay {
         }
     }
 
+    /// The ray's origin.
+    #[inline(always)]
+    pub(crate) fn origin(&self) -> &[f32; 3] {
+        &self.origin
+    }
+
+    /// The axes (kx, ky, kz) the test maps to x, y and z.
+    #[inline(always)]
+    pub(crate) fn axes(&self) -> (usize, usize, usize) {
+        (self.kx, self.ky, self.kz)
+    }
+
+    /// The shear (sx, sy, sz).
+    #[inline(always)]
+    pub(crate) fn shear(&self) -> (f32, f32, f32) {
+        (self.sx, self.sy, self.sz)
+    }
+
     /// The t in (T_MIN, t_max) where the ray meets triangle `v`, if it does. Zero-area
     /// triangles are never hit.
     #[inline]

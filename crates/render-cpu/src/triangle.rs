@@ -1,5 +1,5 @@
 //! Mesh triangles: their normals and materials, and the BVH of `steadyray-accel` (watertight
-//! triangle test, 4-wide tree) that answers the closest-hit and any-hit queries over them.
+//! triangle test, 8-wide tree) that answers the closest-hit and any-hit queries over them.
 
 use crate::ray::Ray;
 use glam::{Vec3, Vec3A};
