@@ -130,11 +130,30 @@ impl Ladder {
     }
 }
 
+/// Settings that differ only in R and measure within this fraction of each other in both
+/// rays and FLIP are a tie.
+const DEPTH_TIE: f64 = 0.01;
+
 /// The Pareto front of measured settings: sorted by rays (ties: lower FLIP first), keeping
 /// each setting whose FLIP is below that of every cheaper one. Non-finite measurements are
 /// dropped.
+///
+/// Among settings that differ only in R and tie on average (within 1 % in rays and FLIP),
+/// only the deepest competes: the average over views dilutes the views dominated by mirrors,
+/// which are where R shows and costs, so a shallower setting's edge of a few rays or a FLIP
+/// ulp is noise, and taking it would give up reflections where they matter.
 pub fn pareto_front(mut measured: Vec<LadderPoint>) -> Vec<LadderPoint> {
     measured.retain(|p| p.rays.is_finite() && p.flip.is_finite());
+    let ties = |shallow: &LadderPoint, deep: &LadderPoint| {
+        let near = |a: f64, b: f64| b <= a * (1.0 + DEPTH_TIE) && a <= b * (1.0 + DEPTH_TIE);
+        deep.depth > shallow.depth
+            && deep.spp == shallow.spp
+            && deep.scale == shallow.scale
+            && near(shallow.rays, deep.rays)
+            && near(shallow.flip, deep.flip)
+    };
+    let all = measured.clone();
+    measured.retain(|p| !all.iter().any(|q| ties(p, q)));
     measured.sort_by(|a, b| a.rays.total_cmp(&b.rays).then(a.flip.total_cmp(&b.flip)));
     let mut front: Vec<LadderPoint> = Vec::new();
     for p in measured {
@@ -160,6 +179,19 @@ mod tests {
             ms: rays / 1e6,
             flip,
         }
+    }
+
+    #[test]
+    fn depths_that_tie_on_average_give_way_to_the_deepest() {
+        let front = pareto_front(vec![
+            pt(1.0, 6, 1000.0, 0.0500),
+            pt(1.0, 16, 1002.0, 0.0501),
+            pt(1.0, 12, 1001.0, 0.0502),
+            pt(2.0, 4, 1500.0, 0.0300), // 20 % cheaper than R = 16: not a tie, kept
+            pt(2.0, 16, 1800.0, 0.0290),
+        ]);
+        let kept: Vec<(f32, u32)> = front.iter().map(|p| (p.spp, p.depth)).collect();
+        assert_eq!(kept, vec![(1.0, 16), (2.0, 4), (2.0, 16)]);
     }
 
     #[test]

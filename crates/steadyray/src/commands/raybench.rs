@@ -66,6 +66,25 @@ pub struct RaybenchArgs {
     /// Seed of the bounce directions.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
+    /// Split every triangle into four at its edge midpoints this many times before building:
+    /// the same surface from 4^N times the triangles, for measuring how cost grows with
+    /// triangle count at a fixed view (at most 6).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=6))]
+    pub subdivide: u32,
+}
+
+/// `tris` with each triangle split into four at its edge midpoints, `times` times over.
+fn subdivide(mut tris: Vec<[Vec3; 3]>, times: u32) -> Vec<[Vec3; 3]> {
+    for _ in 0..times {
+        tris = tris
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let (ab, bc, ca) = ((a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5);
+                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    tris
 }
 
 /// The camera as `--camera` takes it and the report prints it.
@@ -136,6 +155,7 @@ struct Report {
     mesh: String,
     backend: &'static str,
     triangles: usize,
+    subdivide: u32,
     degenerate_dropped: usize,
     load_s: f64,
     build_s: f64,
@@ -256,9 +276,12 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
     let imported = import_mesh(&args.mesh, &MeshTransform::default())?;
     let load_s = start.elapsed().as_secs_f64();
     let mesh = imported.mesh;
-    let corners: Vec<[Vec3; 3]> = (0..mesh.triangles.len())
-        .map(|i| mesh.triangle(i))
-        .collect();
+    let corners = subdivide(
+        (0..mesh.triangles.len())
+            .map(|i| mesh.triangle(i))
+            .collect(),
+        args.subdivide,
+    );
     let spec = CameraSpec::parse(&args.camera, &mesh.positions)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
@@ -331,6 +354,7 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
         mesh: args.mesh.display().to_string(),
         backend,
         triangles: bvh.triangle_count(),
+        subdivide: args.subdivide,
         degenerate_dropped: imported.degenerate_dropped,
         load_s,
         build_s,
@@ -352,4 +376,29 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
     };
     println!("{}", serde_json::to_string(&report)?);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each split keeps the surface: four times the triangles, the same total area and the
+    /// same corners' bounding box.
+    #[test]
+    fn subdividing_keeps_the_surface() {
+        let tris = vec![
+            [Vec3::ZERO, Vec3::X, Vec3::Y],
+            [Vec3::new(1.0, 2.0, 3.0), Vec3::new(-2.0, 0.5, 1.0), Vec3::Z],
+        ];
+        let area = |t: &[[Vec3; 3]]| -> f32 {
+            t.iter()
+                .map(|[a, b, c]| 0.5 * (*b - *a).cross(*c - *a).length())
+                .sum()
+        };
+        for times in 0..=3 {
+            let split = subdivide(tris.clone(), times);
+            assert_eq!(split.len(), tris.len() * 4usize.pow(times));
+            assert!((area(&split) - area(&tris)).abs() < 1e-4 * area(&tris));
+        }
+    }
 }
