@@ -1,6 +1,8 @@
 //! Deterministic sampling rules shared bit for bit by the CPU and GPU backends
 //! (mirrored in `render-gpu/src/shaders/`): integer hashing only, so both agree exactly.
 
+use glam::Vec3A;
+
 /// The PCG hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", 2020).
 pub fn pcg_hash(x: u32) -> u32 {
     let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
@@ -68,6 +70,21 @@ pub fn samples_for_pixel(px: u32, py: u32, spp: f32) -> u32 {
     let frac = spp - whole;
     let threshold = (BAYER8[(py & 7) as usize][(px & 7) as usize] as f32 + 0.5) / 64.0;
     whole as u32 + u32::from(frac > threshold)
+}
+
+/// A cosine-weighted direction about unit normal `n` from two uniform numbers in [0, 1)
+/// (Malley's method, with the branchless orthonormal basis of Duff et al., JCGT 2017): the
+/// diffuse bounce rays of `steadyray raybench` and of the BVH benchmarks. Not used by the
+/// Whitted integrator, which has no diffuse bounces.
+pub fn cosine_direction(n: Vec3A, u1: f32, u2: f32) -> Vec3A {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    let t = Vec3A::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    let s = Vec3A::new(b, sign + n.y * n.y * a, -n.y);
+    let r = u1.sqrt();
+    let phi = std::f32::consts::TAU * u2;
+    (t * (r * phi.cos()) + s * (r * phi.sin()) + n * (1.0 - u1).max(0.0).sqrt()).normalize()
 }
 
 #[cfg(test)]

@@ -22,7 +22,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use steadyray_accel::Bvh;
 use steadyray_render::TimingSource;
-use steadyray_render::sampling::{pcg_hash, unit_from_hash};
+use steadyray_render::sampling::{cosine_direction, pcg_hash, unit_from_hash};
 use steadyray_render_gpu::layout::GpuCastRay;
 use steadyray_render_gpu::{CastOutcome, GpuRayCaster};
 use steadyray_scene::Camera;
@@ -180,19 +180,6 @@ struct Report {
     primary_rays_per_s_reps: Vec<f64>,
     bounce_rays_per_s_reps: Vec<f64>,
     camera: CameraSpec,
-}
-
-/// A cosine-weighted direction about unit normal `n` from two uniform numbers in [0, 1)
-/// (Malley's method, with the branchless orthonormal basis of Duff et al., JCGT 2017).
-fn cosine_direction(n: Vec3A, u1: f32, u2: f32) -> Vec3A {
-    let sign = 1.0f32.copysign(n.z);
-    let a = -1.0 / (sign + n.z);
-    let b = n.x * n.y * a;
-    let t = Vec3A::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    let s = Vec3A::new(b, sign + n.y * n.y * a, -n.y);
-    let r = u1.sqrt();
-    let phi = std::f32::consts::TAU * u2;
-    (t * (r * phi.cos()) + s * (r * phi.sin()) + n * (1.0 - u1).max(0.0).sqrt()).normalize()
 }
 
 /// Traces every cast `reps` times; returns rays per second of each repetition.
