@@ -12,8 +12,10 @@ use crate::watertight::{T_MIN, WatertightRay};
 use glam::Vec3A;
 use std::mem::MaybeUninit;
 
-/// Children per node. Eight measured faster than four on both ray sets of `steadyray
-/// raybench` (bunny, 2 threads: primary 28.7 vs 25.5 M rays/s, bounce 7.9 vs 6.2).
+/// Children per node. Eight with AVX2 box tests measured faster than the earlier 4-wide
+/// tree with scalar leaves on both ray sets of `steadyray raybench` (bunny, 2 threads:
+/// primary 28.7 vs 25.5 M rays/s, bounce 7.9 vs 6.2); without AVX, eight lanes of portable
+/// loops traced primary rays slower than four (9.4 vs 11.3 M rays/s, 1 thread).
 pub(crate) const WIDTH: usize = 8;
 /// Set in [`WideNode::child`] for a leaf; the bits below hold the index of its [`Tri4`] block.
 pub(crate) const LEAF: u32 = 1 << 31;
