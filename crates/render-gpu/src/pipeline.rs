@@ -52,6 +52,14 @@ pub(crate) struct Pipelines {
     pub(crate) tonemap: wgpu::ComputePipeline,
 }
 
+/// The whole of `buffer` bound at `binding` (the bind group side of [`layout_entry`]).
+pub(crate) fn buffer_entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: buffer.as_entire_binding(),
+    }
+}
+
 /// A storage or uniform buffer binding visible to compute shaders.
 pub(crate) fn layout_entry(
     binding: u32,

@@ -19,7 +19,9 @@ use crate::buffers::GrowBuffer;
 use crate::device::GpuContext;
 use crate::error::{gpu_error, scoped};
 use crate::layout::{CAST_MISS, CAST_TILE, GpuCastHit, GpuCastParams, GpuCastRay, GpuTriangle};
-use crate::pipeline::{RAYCAST_SOURCE, compute_pipeline, layout_entry, shader_module};
+use crate::pipeline::{
+    RAYCAST_SOURCE, buffer_entry, compute_pipeline, layout_entry, shader_module,
+};
 use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
 use glam::Vec3;
 use std::time::{Duration, Instant};
@@ -411,12 +413,6 @@ impl GpuRayCaster {
 
     /// The bind group over the current buffers, rebuilt if one was replaced.
     fn bind_group(&mut self) -> wgpu::BindGroup {
-        fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry {
-                binding,
-                resource: buffer.as_entire_binding(),
-            }
-        }
         let bind_group = self.bind_group.get_or_insert_with(|| {
             self.ctx
                 .device
@@ -424,11 +420,11 @@ impl GpuRayCaster {
                     label: Some("ray caster bindings"),
                     layout: &self.bind_group_layout,
                     entries: &[
-                        entry(binding::PARAMS, &self.params),
-                        entry(binding::TRIANGLES, self.triangles.buffer()),
-                        entry(binding::BVH_NODES, self.bvh_nodes.buffer()),
-                        entry(binding::RAYS, self.rays.buffer()),
-                        entry(binding::HITS, self.hits.buffer()),
+                        buffer_entry(binding::PARAMS, &self.params),
+                        buffer_entry(binding::TRIANGLES, self.triangles.buffer()),
+                        buffer_entry(binding::BVH_NODES, self.bvh_nodes.buffer()),
+                        buffer_entry(binding::RAYS, self.rays.buffer()),
+                        buffer_entry(binding::HITS, self.hits.buffer()),
                     ],
                 })
         });

@@ -5,7 +5,7 @@ use crate::buffers::{FrameBuffers, TOTALS_BYTES};
 use crate::device::GpuContext;
 use crate::error::{gpu_error, scoped};
 use crate::layout::{GpuFrame, WORKGROUP_SIZE};
-use crate::pipeline::{Pipelines, binding};
+use crate::pipeline::{Pipelines, binding, buffer_entry};
 use crate::scene_buffers::{PackedScene, SceneBuffers};
 use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
 use std::time::Instant;
@@ -111,12 +111,6 @@ impl GpuRenderer {
 
     /// The bind group over the current buffers, rebuilt if one was replaced.
     fn bind_group(&mut self) -> wgpu::BindGroup {
-        fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry {
-                binding,
-                resource: buffer.as_entire_binding(),
-            }
-        }
         let bind_group = self.bind_group.get_or_insert_with(|| {
             let (s, f) = (&self.scene_buffers, &self.frame_buffers);
             self.ctx
@@ -125,16 +119,16 @@ impl GpuRenderer {
                     label: Some("steadyray bindings"),
                     layout: &self.pipelines.bind_group_layout,
                     entries: &[
-                        entry(binding::FRAME, &self.frame_uniform),
-                        entry(binding::SHAPES, s.shapes.buffer()),
-                        entry(binding::TRIANGLES, s.triangles.buffer()),
-                        entry(binding::MATERIALS, s.materials.buffer()),
-                        entry(binding::LIGHTS, s.lights.buffer()),
-                        entry(binding::IMAGE, f.image.buffer()),
-                        entry(binding::GROUP_COUNTS, f.group_counts.buffer()),
-                        entry(binding::TOTALS, &f.totals),
-                        entry(binding::SRGB8, f.srgb8.buffer()),
-                        entry(binding::BVH_NODES, s.bvh_nodes.buffer()),
+                        buffer_entry(binding::FRAME, &self.frame_uniform),
+                        buffer_entry(binding::SHAPES, s.shapes.buffer()),
+                        buffer_entry(binding::TRIANGLES, s.triangles.buffer()),
+                        buffer_entry(binding::MATERIALS, s.materials.buffer()),
+                        buffer_entry(binding::LIGHTS, s.lights.buffer()),
+                        buffer_entry(binding::IMAGE, f.image.buffer()),
+                        buffer_entry(binding::GROUP_COUNTS, f.group_counts.buffer()),
+                        buffer_entry(binding::TOTALS, &f.totals),
+                        buffer_entry(binding::SRGB8, f.srgb8.buffer()),
+                        buffer_entry(binding::BVH_NODES, s.bvh_nodes.buffer()),
                     ],
                 })
         });
