@@ -73,6 +73,8 @@ impl WatertightRay {
 
     /// The t where the ray's line meets triangle `v`, or NaN where it misses (NaN fails
     /// every range test, so callers compare without a separate flag).
+    /// The BVH's leaves run this test four triangles at a time (`tri4.rs`); this single
+    /// triangle form is the reference they are checked against, bit for bit.
     #[inline]
     pub fn intersect_t(&self, v: &TriangleVerts) -> f32 {
         let (kx, ky, kz) = (self.kx, self.ky, self.kz);

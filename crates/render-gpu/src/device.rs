@@ -68,6 +68,12 @@ impl GpuContext {
         .replace(" )", ")")
     }
 
+    /// A command encoder labelled `label` (the label names it in validation errors).
+    pub(crate) fn encoder(&self, label: &str) -> wgpu::CommandEncoder {
+        self.device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) })
+    }
+
     /// Submits `commands` and waits for the GPU to finish them, surfacing validation errors,
     /// device loss and uncaptured errors as [`RenderError::Gpu`].
     pub(crate) fn submit_and_wait(&self, commands: wgpu::CommandBuffer) -> Result<(), RenderError> {

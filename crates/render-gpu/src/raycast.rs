@@ -362,12 +362,7 @@ impl GpuRayCaster {
         timed: bool,
     ) -> Result<wgpu::CommandBuffer, RenderError> {
         let timer = self.timer.as_ref().filter(|_| timed);
-        let mut encoder = self
-            .ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("cast"),
-            });
+        let mut encoder = self.ctx.encoder("cast");
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("cast"),
@@ -390,12 +385,7 @@ impl GpuRayCaster {
         if bytes == 0 {
             return Ok(Vec::new());
         }
-        let mut encoder = self
-            .ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("read hits"),
-            });
+        let mut encoder = self.ctx.encoder("read hits");
         encoder.copy_buffer_to_buffer(self.hits.buffer(), 0, self.hits_readback.buffer(), 0, bytes);
         let commands = scoped(&self.ctx.device, "cannot record the hit readback", || {
             encoder.finish()

@@ -98,15 +98,9 @@ impl GpuRenderer {
     pub fn read_srgb8(&mut self) -> Result<Vec<u8>, RenderError> {
         let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
         let size = u64::from(width) * u64::from(height) * 4;
-        let mut encoder = self.encoder("tonemap");
+        let mut encoder = self.ctx.encoder("tonemap");
         self.encode_tonemap(&mut encoder, width, height);
         self.read_back(encoder, Source::Srgb8, size)
-    }
-
-    fn encoder(&self, label: &str) -> wgpu::CommandEncoder {
-        self.ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) })
     }
 
     /// The bind group over the current buffers, rebuilt if one was replaced.
@@ -300,7 +294,7 @@ impl Renderer for GpuRenderer {
             .queue
             .write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&frame));
 
-        let mut encoder = self.encoder("frame");
+        let mut encoder = self.ctx.encoder("frame");
         let bind_group = self.bind_group();
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -356,7 +350,7 @@ impl Renderer for GpuRenderer {
     fn read_image(&mut self) -> Result<Image, RenderError> {
         let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
         let size = u64::from(width) * u64::from(height) * 16;
-        let encoder = self.encoder("read image");
+        let encoder = self.ctx.encoder("read image");
         let bytes = self.read_back(encoder, Source::Linear, size)?;
         let pixels = bytes
             .chunks_exact(16)
@@ -466,7 +460,7 @@ pub(crate) mod tests {
             bytemuck::cast_slice(&counts),
         );
         let bind_group = renderer.bind_group();
-        let mut encoder = renderer.encoder("reduce test");
+        let mut encoder = renderer.ctx.encoder("reduce test");
         renderer.encode_totals(&mut encoder, &bind_group, 3);
         renderer.ctx.submit_and_wait(encoder.finish()).unwrap();
         let bytes = renderer

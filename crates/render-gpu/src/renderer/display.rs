@@ -42,7 +42,7 @@ impl GpuRenderer {
     /// image.
     pub fn display_image(&mut self) -> Result<DisplayImage<'_>, RenderError> {
         let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
-        let mut encoder = self.encoder("tonemap for display");
+        let mut encoder = self.ctx.encoder("tonemap for display");
         self.encode_tonemap(&mut encoder, width, height);
         let device = &self.ctx.device;
         let commands = scoped(device, "cannot record the tone map", || encoder.finish())?;
