@@ -142,18 +142,16 @@ impl Wide {
             } else {
                 let block = &self.leaves[(cur & !LEAF) as usize];
                 let t = block.intersect_t(&wr);
-                let mut candidate = false;
-                for &tl in &t {
-                    candidate |= (tl > T_MIN) & (tl <= best_t);
-                }
-                if candidate {
-                    for (lane, &tl) in t.iter().enumerate() {
-                        let id = block.id(lane);
-                        if tl > T_MIN && (tl < best_t || (tl == best_t && id < best_id)) {
-                            best_t = tl;
-                            best_id = id;
-                            found = true;
-                        }
+                let mut hits = Tri4::lanes_in(&t, T_MIN, best_t);
+                while hits != 0 {
+                    let lane = hits.trailing_zeros() as usize;
+                    hits &= hits - 1;
+                    let (tl, id) = (t[lane], block.id(lane));
+                    // An earlier lane may have lowered best_t since the mask was taken.
+                    if tl < best_t || (tl == best_t && id < best_id) {
+                        best_t = tl;
+                        best_id = id;
+                        found = true;
                     }
                 }
             }
@@ -206,11 +204,8 @@ impl Wide {
                 }
             } else {
                 let t = self.leaves[(cur & !LEAF) as usize].intersect_t(&wr);
-                let mut hit = false;
-                for &tl in &t {
-                    hit |= (tl > T_MIN) & (tl < t_max);
-                }
-                if hit {
+                // t < t_max is t <= the float below t_max.
+                if Tri4::lanes_in(&t, T_MIN, t_max.next_down()) != 0 {
                     return true;
                 }
             }
