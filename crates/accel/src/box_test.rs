@@ -17,9 +17,12 @@ const FAR_SCALE: f32 = 1.0 + 1.0 / (1 << 20) as f32;
 /// bound of each axis is met first. A zero direction component gives an infinite inverse;
 /// a slab bound through the origin then gives 0·∞ = NaN, which the tests ignore: the ray
 /// lies in that slab for every t, as it should.
+/// The widening is folded into the inverse direction, one scaled copy for entry distances
+/// and one for exit distances, so that it costs no instruction per node.
 pub(crate) struct BoxRay {
     origin: [f32; 3],
-    inv: [f32; 3],
+    inv_near: [f32; 3],
+    inv_far: [f32; 3],
     near: [usize; 3],
     far: [usize; 3],
 }
@@ -31,7 +34,8 @@ impl BoxRay {
         let near = [0, 1, 2].map(|a| if inv[a] >= 0.0 { a } else { a + 3 });
         Self {
             origin: origin.to_array(),
-            inv,
+            inv_near: inv.map(|i| i * NEAR_SCALE),
+            inv_far: inv.map(|i| i * FAR_SCALE),
             far: near.map(|n| if n < 3 { n + 3 } else { n - 3 }),
             near,
         }
@@ -51,14 +55,15 @@ impl BoxTest for Portable {
     #[inline(always)]
     fn test(ray: &BoxRay, node: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
         let mut near = [0.0f32; WIDTH];
-        let mut far = [f32::INFINITY; WIDTH];
+        let mut far = [t_max; WIDTH];
         for axis in 0..3 {
             let lo = &node.bounds[ray.near[axis]];
             let hi = &node.bounds[ray.far[axis]];
-            let (o, inv) = (ray.origin[axis], ray.inv[axis]);
+            let o = ray.origin[axis];
+            let (inv_near, inv_far) = (ray.inv_near[axis], ray.inv_far[axis]);
             for lane in 0..WIDTH {
-                let n = (lo[lane] - o) * inv;
-                let f = (hi[lane] - o) * inv;
+                let n = (lo[lane] - o) * inv_near;
+                let f = (hi[lane] - o) * inv_far;
                 // Comparisons, so that a NaN bound leaves the interval unchanged.
                 near[lane] = if n > near[lane] { n } else { near[lane] };
                 far[lane] = if f < far[lane] { f } else { far[lane] };
@@ -66,10 +71,7 @@ impl BoxTest for Portable {
         }
         let mut hit = 0u32;
         for lane in 0..WIDTH {
-            near[lane] *= NEAR_SCALE;
-            let far = far[lane] * FAR_SCALE;
-            let limit = if far < t_max { far } else { t_max };
-            hit |= u32::from(near[lane] <= limit) << lane;
+            hit |= u32::from(near[lane] <= far[lane]) << lane;
         }
         (near, hit)
     }
@@ -90,23 +92,19 @@ impl BoxTest for Avx {
         // only after the CPU was found to have it; the loads read whole 8-lane rows.
         unsafe {
             let mut near = _mm256_setzero_ps();
-            let mut far = _mm256_set1_ps(f32::INFINITY);
+            let mut far = _mm256_set1_ps(t_max);
             for axis in 0..3 {
                 let lo = _mm256_loadu_ps(node.bounds[ray.near[axis]].as_ptr());
                 let hi = _mm256_loadu_ps(node.bounds[ray.far[axis]].as_ptr());
                 let o = _mm256_set1_ps(ray.origin[axis]);
-                let inv = _mm256_set1_ps(ray.inv[axis]);
-                let n = _mm256_mul_ps(_mm256_sub_ps(lo, o), inv);
-                let f = _mm256_mul_ps(_mm256_sub_ps(hi, o), inv);
+                let n = _mm256_mul_ps(_mm256_sub_ps(lo, o), _mm256_set1_ps(ray.inv_near[axis]));
+                let f = _mm256_mul_ps(_mm256_sub_ps(hi, o), _mm256_set1_ps(ray.inv_far[axis]));
                 // max(a, b) is `a > b ? a : b` and min(a, b) `a < b ? a : b`: a NaN `n` or
                 // `f` leaves the interval unchanged, as in the portable loop.
                 near = _mm256_max_ps(n, near);
                 far = _mm256_min_ps(f, far);
             }
-            near = _mm256_mul_ps(near, _mm256_set1_ps(NEAR_SCALE));
-            let far = _mm256_mul_ps(far, _mm256_set1_ps(FAR_SCALE));
-            let limit = _mm256_min_ps(far, _mm256_set1_ps(t_max));
-            let hit = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(near, limit)) as u32;
+            let hit = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(near, far)) as u32;
             let mut out = [0.0f32; WIDTH];
             _mm256_storeu_ps(out.as_mut_ptr(), near);
             (out, hit)

@@ -179,11 +179,27 @@ impl Tri4 {
     /// The lanes (bit `lane`) whose t lies in (lo, hi]; NaN lies in none.
     #[inline(always)]
     pub fn lanes_in(t: &[f32; 4], lo: f32, hi: f32) -> u32 {
-        let mut mask = 0;
-        for (lane, &tl) in t.iter().enumerate() {
-            mask |= u32::from((tl > lo) & (tl <= hi)) << lane;
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::*;
+            // SAFETY: SSE is part of every x86-64 CPU; the load reads the four lanes.
+            unsafe {
+                let t = _mm_loadu_ps(t.as_ptr());
+                let inside = _mm_and_ps(
+                    _mm_cmpgt_ps(t, _mm_set1_ps(lo)),
+                    _mm_cmple_ps(t, _mm_set1_ps(hi)),
+                );
+                _mm_movemask_ps(inside) as u32
+            }
         }
-        mask
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let mut mask = 0;
+            for (lane, &tl) in t.iter().enumerate() {
+                mask |= u32::from((tl > lo) & (tl <= hi)) << lane;
+            }
+            mask
+        }
     }
 }
 
