@@ -18,26 +18,23 @@ const FAR_SCALE: f32 = 1.0 + 1.0 / (1 << 20) as f32;
 /// a slab bound through the origin then gives 0·∞ = NaN, which the tests ignore: the ray
 /// lies in that slab for every t, as it should.
 /// The widening is folded into the inverse direction, one scaled copy for entry distances
-/// and one for exit distances, so that it costs no instruction per node.
+/// and one for exit distances, so that it costs no instruction per node. The sign of the
+/// inverse direction says which bound of an axis is met first: the minimum where it is
+/// positive (or +0, giving +∞), the maximum where it is negative.
 pub(crate) struct BoxRay {
     origin: [f32; 3],
     inv_near: [f32; 3],
     inv_far: [f32; 3],
-    near: [usize; 3],
-    far: [usize; 3],
 }
 
 impl BoxRay {
     #[inline(always)]
     pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
         let inv = dir.to_array().map(|d| 1.0 / d);
-        let near = [0, 1, 2].map(|a| if inv[a] >= 0.0 { a } else { a + 3 });
         Self {
             origin: origin.to_array(),
             inv_near: inv.map(|i| i * NEAR_SCALE),
             inv_far: inv.map(|i| i * FAR_SCALE),
-            far: near.map(|n| if n < 3 { n + 3 } else { n - 3 }),
-            near,
         }
     }
 }
@@ -57,8 +54,12 @@ impl BoxTest for Portable {
         let mut near = [0.0f32; WIDTH];
         let mut far = [t_max; WIDTH];
         for axis in 0..3 {
-            let lo = &node.bounds[ray.near[axis]];
-            let hi = &node.bounds[ray.far[axis]];
+            let (min, max) = (&node.bounds[axis], &node.bounds[axis + 3]);
+            let (lo, hi) = if ray.inv_near[axis].is_sign_negative() {
+                (max, min)
+            } else {
+                (min, max)
+            };
             let o = ray.origin[axis];
             let (inv_near, inv_far) = (ray.inv_near[axis], ray.inv_far[axis]);
             for lane in 0..WIDTH {
@@ -94,11 +95,19 @@ impl BoxTest for Avx {
             let mut near = _mm256_setzero_ps();
             let mut far = _mm256_set1_ps(t_max);
             for axis in 0..3 {
-                let lo = _mm256_loadu_ps(node.bounds[ray.near[axis]].as_ptr());
-                let hi = _mm256_loadu_ps(node.bounds[ray.far[axis]].as_ptr());
+                let min = _mm256_loadu_ps(node.bounds[axis].as_ptr());
+                let max = _mm256_loadu_ps(node.bounds[axis + 3].as_ptr());
+                let (inv_near, inv_far) = (
+                    _mm256_set1_ps(ray.inv_near[axis]),
+                    _mm256_set1_ps(ray.inv_far[axis]),
+                );
+                // Rows at fixed offsets, swapped by the sign bit of the inverse direction:
+                // no per-ray row offsets held in registers or reloaded per node.
+                let lo = _mm256_blendv_ps(min, max, inv_near);
+                let hi = _mm256_blendv_ps(max, min, inv_near);
                 let o = _mm256_set1_ps(ray.origin[axis]);
-                let n = _mm256_mul_ps(_mm256_sub_ps(lo, o), _mm256_set1_ps(ray.inv_near[axis]));
-                let f = _mm256_mul_ps(_mm256_sub_ps(hi, o), _mm256_set1_ps(ray.inv_far[axis]));
+                let n = _mm256_mul_ps(_mm256_sub_ps(lo, o), inv_near);
+                let f = _mm256_mul_ps(_mm256_sub_ps(hi, o), inv_far);
                 // max(a, b) is `a > b ? a : b` and min(a, b) `a < b ? a : b`: a NaN `n` or
                 // `f` leaves the interval unchanged, as in the portable loop.
                 near = _mm256_max_ps(n, near);
