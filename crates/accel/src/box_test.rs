@@ -30,7 +30,7 @@ pub(crate) struct BoxRay {
 impl BoxRay {
     #[inline(always)]
     pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
-        let inv = dir.to_array().map(|d| 1.0 / d);
+        let inv = (Vec3A::ONE / dir).to_array();
         Self {
             origin: origin.to_array(),
             inv_near: inv.map(|i| i * NEAR_SCALE),
