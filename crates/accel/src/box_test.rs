@@ -13,14 +13,16 @@ use glam::Vec3A;
 const NEAR_SCALE: f32 = 1.0 - 1.0 / (1 << 20) as f32;
 const FAR_SCALE: f32 = 1.0 + 1.0 / (1 << 20) as f32;
 
-/// What one traversal needs of its box tests: the origin, the inverse direction and which
-/// bound of each axis is met first. A zero direction component gives an infinite inverse;
-/// a slab bound through the origin then gives 0·∞ = NaN, which the tests ignore: the ray
-/// lies in that slab for every t, as it should.
-/// The widening is folded into the inverse direction, one scaled copy for entry distances
-/// and one for exit distances, so that it costs no instruction per node. The sign of the
-/// inverse direction says which bound of an axis is met first: the minimum where it is
-/// positive (or +0, giving +∞), the maximum where it is negative.
+/// What one traversal needs of its box tests: the origin and the inverse direction, in
+/// two copies with the widening folded in (one for entry distances, one for exit
+/// distances), so that the widening costs no instruction per node. The relative error this
+/// adds (one rounding) is far inside the margin.
+///
+/// The sign of the inverse direction says which bound of an axis is met first: the minimum
+/// where it is positive (+∞ for a +0 component), the maximum where it is negative. A zero
+/// direction component gives an infinite inverse; a slab bound through the origin then
+/// gives 0·∞ = NaN, which the tests ignore: the ray lies in that slab for every t, as it
+/// should.
 pub(crate) struct BoxRay {
     origin: [f32; 3],
     inv_near: [f32; 3],
