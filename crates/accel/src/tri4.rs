@@ -54,7 +54,7 @@ impl Tri4 {
         }
     }
 
-    /// [`Tri4::intersect_t`] as lane loops, for CPUs without SSE (and as the SSE form's
+    /// [`Tri4::intersect_t`] as lane loops, for targets other than x86-64 (and as the SSE form's
     /// reference in tests).
     #[cfg(any(test, not(target_arch = "x86_64")))]
     #[inline(always)]
