@@ -109,6 +109,12 @@ fn child_ref(first: u32, count: u32) -> u32 {
     return select(first, LEAF_BIT | (count << 27u) | first, count > 0u);
 }
 
+// The triangles of leaf reference `leaf` (as made by `child_ref`): positions [x, y).
+fn leaf_range(leaf: u32) -> vec2<u32> {
+    let first = leaf & 0x07ffffffu;
+    return vec2<u32>(first, first + ((leaf >> 27u) & 0xfu));
+}
+
 // A ray prepared for box tests. Zero direction components take no division: such a ray
 // lies in that axis' slab for every t when its origin is inside it (bounds included), and
 // for none otherwise.
@@ -184,9 +190,8 @@ fn closest_triangle(ray: Ray, t_max: f32) -> TriangleHit {
                 continue;
             }
         } else {
-            let first = cur & 0x07ffffffu;
-            let end = first + ((cur >> 27u) & 0xfu);
-            for (var k = first; k < end; k++) {
+            let range = leaf_range(cur);
+            for (var k = range.x; k < range.y; k++) {
                 let tri = triangles[k];
                 let t = hit_triangle(tri, ray.origin, sh, NO_HIT);
                 if t < best.t || (t == best.t && tri.id < best.id) {
@@ -239,9 +244,8 @@ fn any_triangle(ray: Ray, t_max: f32) -> bool {
                 continue;
             }
         } else {
-            let first = cur & 0x07ffffffu;
-            let end = first + ((cur >> 27u) & 0xfu);
-            for (var k = first; k < end; k++) {
+            let range = leaf_range(cur);
+            for (var k = range.x; k < range.y; k++) {
                 if hit_triangle(triangles[k], ray.origin, sh, t_max) < t_max {
                     return true;
                 }
