@@ -36,13 +36,14 @@ mod binding {
     pub const BVH_NODES: u32 = 2;
     pub const RAYS: u32 = 3;
     pub const HITS: u32 = 4;
+    pub const NEXT_BLOCK: u32 = 5;
 }
 
-/// Blocks of `CAST_TILE`² rays per workgroup (when the image or list is large enough): each
-/// thread casts this many rays, so WGSL's zeroing of its traversal stack is paid once per
-/// this many rays, while enough workgroups remain to fill a large GPU (a 1920x1080 image
-/// gives 4,050 workgroups of 64 threads).
-const BLOCKS_PER_GROUP: u32 = 8;
+/// The persistent workgroups launched per dispatch (fewer when there are fewer blocks of
+/// `CAST_TILE`² rays): 262,144 threads, about as many as the largest GPUs hold at once (an
+/// H100 holds 270,336), so that each thread pays WGSL's zeroing of its traversal stack once
+/// and then casts ray after ray, its workgroup taking the next block as it finishes one.
+const PERSISTENT_GROUPS: u32 = 4096;
 
 /// Untimed dispatches run before the timed ones until this much time has passed (at least
 /// one): pipeline and cache warm-up, and GPU clocks ramping up.
@@ -98,6 +99,8 @@ pub struct GpuRayCaster {
     rays: GrowBuffer,
     hits: GrowBuffer,
     hits_readback: GrowBuffer,
+    /// The kernels' block counter, zeroed before each dispatch.
+    next_block: wgpu::Buffer,
     /// The two timestamps of the last timed dispatch.
     stamps_readback: wgpu::Buffer,
     /// Refers to the buffers above; dropped whenever one of them is replaced.
@@ -145,6 +148,7 @@ impl GpuRayCaster {
 
         let module = shader_module(device, RAYCAST_SOURCE)?;
         let read = wgpu::BufferBindingType::Storage { read_only: true };
+        let write = wgpu::BufferBindingType::Storage { read_only: false };
         let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ray caster bindings"),
             entries: &[
@@ -152,10 +156,8 @@ impl GpuRayCaster {
                 layout_entry(binding::TRIANGLES, read),
                 layout_entry(binding::BVH_NODES, read),
                 layout_entry(binding::RAYS, read),
-                layout_entry(
-                    binding::HITS,
-                    wgpu::BufferBindingType::Storage { read_only: false },
-                ),
+                layout_entry(binding::HITS, write),
+                layout_entry(binding::NEXT_BLOCK, write),
             ],
         });
         let primary = compute_pipeline(device, &bind_group_layout, &module, "cast_primary")?;
@@ -193,6 +195,12 @@ impl GpuRayCaster {
                 U::MAP_READ | U::COPY_DST,
                 0,
             ),
+            next_block: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("cast block counter"),
+                size: 4,
+                usage: U::STORAGE | U::COPY_DST,
+                mapped_at_creation: false,
+            }),
             stamps_readback: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("cast timestamps readback"),
                 size: TIMESTAMP_BYTES,
@@ -306,8 +314,7 @@ impl GpuRayCaster {
             Kernel::Primary => params.tile_count,
             Kernel::List => params.ray_count.div_ceil(CAST_TILE * CAST_TILE),
         };
-        let max_groups = device.limits().max_compute_workgroups_per_dimension;
-        let groups = blocks.div_ceil(BLOCKS_PER_GROUP).clamp(1, max_groups);
+        let groups = blocks.clamp(1, PERSISTENT_GROUPS);
         let bind_group = self.bind_group();
         let pipeline = match kernel {
             Kernel::Primary => &self.primary,
@@ -363,6 +370,7 @@ impl GpuRayCaster {
     ) -> Result<wgpu::CommandBuffer, RenderError> {
         let timer = self.timer.as_ref().filter(|_| timed);
         let mut encoder = self.ctx.encoder("cast");
+        encoder.clear_buffer(&self.next_block, 0, None);
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("cast"),
@@ -415,6 +423,7 @@ impl GpuRayCaster {
                         buffer_entry(binding::BVH_NODES, self.bvh_nodes.buffer()),
                         buffer_entry(binding::RAYS, self.rays.buffer()),
                         buffer_entry(binding::HITS, self.hits.buffer()),
+                        buffer_entry(binding::NEXT_BLOCK, &self.next_block),
                     ],
                 })
         });

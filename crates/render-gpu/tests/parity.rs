@@ -52,8 +52,8 @@ fn check_parity(name: &str, scene: &Scene, camera: &Camera, size: (u32, u32), sr
             g.timing,
         );
         let what = format!("{name} S={spp} R={max_depth}");
-        diff.assert_parity(&what);
         let exact = gpu.adapter().is_software;
+        diff.assert_parity(&what, exact);
         assert_counts(&g.rays, &c.rays, exact, scene.lights.len(), &what);
         assert_eq!(g.samples, c.samples, "{what}: samples");
     }

@@ -1,8 +1,9 @@
 //! The GPU ray caster against the CPU BVH: on the Stanford bunny, from the camera of
 //! `steadyray raybench`'s benchmark view, every primary and bounce ray's closest hit equals
-//! `Bvh::closest` exactly (t to the bit and the triangle's input index) on lavapipe; a
-//! hardware driver that fuses multiply-adds may move a grazing ray, and there at most 0.1 %
-//! of the rays may differ. Without an adapter the tests skip loudly, unless
+//! `Bvh::closest` exactly (t to the bit and the triangle's input index) on lavapipe. A
+//! hardware driver may fuse multiply-adds: there t may differ in its last bits (on an H100 a
+//! fifth of the primary rays differ by 1 to 2 ulp), the triangle must be the same, and a
+//! grazing ray may hit another triangle or none in at most 0.1 % of the rays. Without an adapter the tests skip loudly, unless
 //! `STEADYRAY_REQUIRE_GPU=1`, which makes them fail.
 
 use glam::{Vec3, Vec3A};
@@ -102,8 +103,9 @@ fn bounce_rays(
         .collect()
 }
 
-/// Checks `outcome` against `Bvh::closest` for `rays`: exactly on a software adapter, up to
-/// 0.1 % of the rays on hardware. Returns the hit fraction.
+/// Checks `outcome` against `Bvh::closest` for `rays`: exactly on a software adapter; on
+/// hardware t within 1e-5 relative and the same triangle, up to 0.1 % of the rays excepted.
+/// Returns the hit fraction.
 fn check_hits(
     what: &str,
     caster: &GpuRayCaster,
@@ -111,6 +113,7 @@ fn check_hits(
     outcome: &CastOutcome,
 ) -> f64 {
     let (_, bvh) = bunny();
+    let exact = caster.adapter().is_software;
     assert_eq!(outcome.hits.len(), rays.len(), "{what}: one hit per ray");
     let mut differ = Vec::new();
     for (i, (ray, gpu)) in rays.iter().zip(&outcome.hits).enumerate() {
@@ -120,7 +123,8 @@ fn check_hits(
             f32::INFINITY,
         );
         let same = match (cpu, *gpu) {
-            (Some((tc, ic)), Some((tg, ig))) => tc.to_bits() == tg.to_bits() && ic == ig,
+            (Some((tc, ic)), Some((tg, ig))) if exact => tc.to_bits() == tg.to_bits() && ic == ig,
+            (Some((tc, ic)), Some((tg, ig))) => (tc - tg).abs() <= 1e-5 * tc && ic == ig,
             (None, None) => true,
             _ => false,
         };
@@ -136,7 +140,7 @@ fn check_hits(
         outcome.timing,
         outcome.times_ms
     );
-    if caster.adapter().is_software {
+    if exact {
         assert!(
             differ.is_empty(),
             "{what}: first differences (ray, cpu, gpu): {:?}",

@@ -1,11 +1,14 @@
 // The ray caster of `steadyray raybench` (src/raycast.rs): each ray's closest triangle hit
 // through the BVH (traversal.wgsl) and nothing else, written to `hits`.
 //
-// A workgroup of CAST_TILE × CAST_TILE threads works through several CAST_TILE² blocks of
-// rays (grid-stride over the dispatch), so that the zeroing of the private traversal stack
-// that WGSL requires happens once per thread, not once per ray. Primary rays are generated
-// here from the camera, one per pixel centre: a block is a CAST_TILE × CAST_TILE pixel tile,
-// so each subgroup's rays are neighbours and traverse the same nodes.
+// The workgroups are persistent: each of CAST_TILE × CAST_TILE threads takes the next block
+// of CAST_TILE² rays from a shared counter until none is left. A block's cost varies widely
+// (empty sky against the mesh's silhouette), and taking blocks as they finish keeps every
+// workgroup busy to the end of the dispatch; launching only as many workgroups as the GPU
+// holds means the zeroing of the private traversal stack that WGSL requires is paid once
+// per thread, not once per ray. Primary rays are generated here from the camera, one per
+// pixel centre: a block is a CAST_TILE × CAST_TILE pixel tile, so each subgroup's rays are
+// neighbours and traverse the same nodes.
 
 @group(0) @binding(0) var<uniform> params: CastParams;
 @group(0) @binding(1) var<storage, read> triangles: array<Triangle>;
@@ -14,8 +17,24 @@
 @group(0) @binding(3) var<storage, read> rays: array<CastRay>;
 // One hit per ray: row-major pixels for cast_primary, the order of `rays` for cast_rays.
 @group(0) @binding(4) var<storage, read_write> hits: array<CastHit>;
+// The next block to take; zero at the start of each dispatch.
+@group(0) @binding(5) var<storage, read_write> next_block: atomic<u32>;
+
+// The block the workgroup works on, as taken by its first thread.
+var<workgroup> taken_block: u32;
 
 const CAST_GROUP_SIZE: u32 = CAST_TILE * CAST_TILE;
+
+// The workgroup's next block (the same for all its threads); blocks past the last mean
+// there is no more work.
+fn take_block(lid: u32) -> u32 {
+    // Every thread has read the previous block before the first thread takes the next.
+    workgroupBarrier();
+    if lid == 0u {
+        taken_block = atomicAdd(&next_block, 1u);
+    }
+    return workgroupUniformLoad(&taken_block);
+}
 
 // The closest hit of the ray origin + t·dir, t in (T_MIN, ∞).
 fn cast_ray(origin: vec3<f32>, dir: vec3<f32>) -> CastHit {
@@ -32,11 +51,14 @@ fn cast_ray(origin: vec3<f32>, dir: vec3<f32>) -> CastHit {
 // One ray through the centre of each pixel of the width × height image.
 @compute @workgroup_size(CAST_TILE, CAST_TILE, 1)
 fn cast_primary(
-    @builtin(workgroup_id) wid: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
     @builtin(local_invocation_id) lid: vec3<u32>,
+    @builtin(local_invocation_index) index: u32,
 ) {
-    for (var tile = wid.x; tile < params.tile_count; tile += groups.x) {
+    loop {
+        let tile = take_block(index);
+        if tile >= params.tile_count {
+            break;
+        }
         let px = (tile % params.tiles_x) * CAST_TILE + lid.x;
         let py = (tile / params.tiles_x) * CAST_TILE + lid.y;
         if px < params.width && py < params.height {
@@ -57,13 +79,13 @@ fn cast_primary(
 
 // The ray_count rays of `rays`.
 @compute @workgroup_size(CAST_GROUP_SIZE, 1, 1)
-fn cast_rays(
-    @builtin(workgroup_id) wid: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
-    @builtin(local_invocation_index) lid: u32,
-) {
+fn cast_rays(@builtin(local_invocation_index) lid: u32) {
     let blocks = (params.ray_count + CAST_GROUP_SIZE - 1u) / CAST_GROUP_SIZE;
-    for (var block = wid.x; block < blocks; block += groups.x) {
+    loop {
+        let block = take_block(lid);
+        if block >= blocks {
+            break;
+        }
         let i = block * CAST_GROUP_SIZE + lid;
         if i < params.ray_count {
             let ray = rays[i];
