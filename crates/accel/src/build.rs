@@ -1,9 +1,8 @@
 //! Building: obvhs's PLOC builder (with reinsertion and leaf collapse) over the triangles'
-//! boxes, then the two layouts: the binary [`FlatNode`] tree for the GPU and the 8-wide
-//! tree for the CPU (collapsed from the binary one by SAH), over the same leaf order of
-//! triangles.
+//! boxes, then the two layouts, both collapsed from that binary tree by SAH over the same
+//! leaves: the 8-wide tree for the CPU and the 4-wide [`GpuNode`] tree for the GPU.
 
-use crate::flat::{FlatChild, FlatNode};
+use crate::gpu_node::{GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
 use crate::tri4::Tri4;
 use crate::watertight::TriangleVerts;
 use crate::wide::{LEAF, STACK_SIZE, WIDTH, Wide, WideNode};
@@ -22,8 +21,14 @@ const MAX_TRIANGLES: usize = 1 << 27;
 pub enum BvhError {
     #[error("{0} triangles are more than the BVH holds (2^27)")]
     TooManyTriangles(usize),
-    #[error("the BVH is {0} levels deep, more than traversal supports ({max})", max = crate::FLAT_STACK_SIZE)]
-    TooDeep(usize),
+    #[error(
+        "the BVH is too deep: its {layout} traversal could hold {needed} pending children, more than its stack ({capacity})"
+    )]
+    TooDeep {
+        layout: &'static str,
+        needed: usize,
+        capacity: usize,
+    },
 }
 
 /// The PLOC tree of obvhs over `tris`' boxes (input indices in its primitive order).
@@ -44,37 +49,6 @@ fn build_bvh2(tris: &[TriangleVerts]) -> Bvh2 {
         ..BvhBuildParams::slow_build()
     };
     obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut Default::default())
-}
-
-/// A child of binary node `i` as a [`FlatChild`]; inner children get their flat index from
-/// `emit`.
-fn flat_child(bvh2: &Bvh2, i: usize, flat: &mut Vec<FlatNode>, depth: &mut usize) -> FlatChild {
-    let n = &bvh2.nodes[i];
-    let (first, count) = if n.prim_count > 0 {
-        (n.first_index, n.prim_count)
-    } else {
-        (emit_flat(bvh2, i, flat, depth), 0)
-    };
-    FlatChild {
-        min: n.aabb.min.to_array(),
-        max: n.aabb.max.to_array(),
-        first,
-        count,
-    }
-}
-
-/// Appends inner binary node `i` and its subtree in depth-first order (a left child right
-/// after its parent); returns its flat index. `depth` counts the levels below it.
-fn emit_flat(bvh2: &Bvh2, i: usize, flat: &mut Vec<FlatNode>, depth: &mut usize) -> u32 {
-    let slot = flat.len();
-    flat.push(FlatNode::default());
-    let first = bvh2.nodes[i].first_index as usize;
-    let (mut dl, mut dr) = (0, 0);
-    let left = flat_child(bvh2, first, flat, &mut dl);
-    let right = flat_child(bvh2, first + 1, flat, &mut dr);
-    *depth = 1 + dl.max(dr);
-    flat[slot] = FlatNode::new(left, right);
-    slot as u32
 }
 
 /// The wide tree being laid out: its nodes and leaf blocks, and the triangles and input
@@ -103,21 +77,21 @@ impl WideOut<'_> {
 /// covering its subtree with at most k wide-tree children. The leaves are obvhs's, each
 /// counted once however they are grouped, so the cost is the total surface area of the wide
 /// nodes. Against opening the largest child first, this filled the bunny's wide nodes to
-/// 5.9 children from 4.4 and cut their number by 31 %.
-struct Collapse {
-    cost: Vec<[f32; WIDTH]>,
+/// 5.9 children from 4.4 and cut their number by 31 %. `W` is the wide tree's width.
+struct Collapse<const W: usize> {
+    cost: Vec<[f32; W]>,
     /// 0: the node itself is one child (a leaf, or an inner wide node); j > 0: its left
     /// child is covered by at most j children and its right by at most k - j.
-    split: Vec<[u8; WIDTH]>,
-    /// For an inner node that is a wide node: how many of its WIDTH lanes cover the left child.
+    split: Vec<[u8; W]>,
+    /// For an inner node that is a wide node: how many of its W lanes cover the left child.
     lanes_left: Vec<u8>,
 }
 
-impl Collapse {
+impl<const W: usize> Collapse<W> {
     fn new(bvh2: &Bvh2) -> Self {
         let mut collapse = Collapse {
-            cost: vec![[0.0; WIDTH]; bvh2.nodes.len()],
-            split: vec![[0; WIDTH]; bvh2.nodes.len()],
+            cost: vec![[0.0; W]; bvh2.nodes.len()],
+            split: vec![[0; W]; bvh2.nodes.len()],
             lanes_left: vec![0; bvh2.nodes.len()],
         };
         collapse.fill(bvh2, 0);
@@ -135,7 +109,7 @@ impl Collapse {
         self.fill(bvh2, r);
         // Per k: the least cost of covering both halves with k children, and how many of
         // them cover the left half.
-        let mut spread = [(f32::INFINITY, 0u8); WIDTH];
+        let mut spread = [(f32::INFINITY, 0u8); W];
         for (k, best) in spread.iter_mut().enumerate().skip(1) {
             for j in 1..=k {
                 let c = self.cost[l][j - 1] + self.cost[r][k - j];
@@ -144,8 +118,8 @@ impl Collapse {
                 }
             }
         }
-        self.cost[n][0] = node.aabb.half_area() + spread[WIDTH - 1].0;
-        self.lanes_left[n] = spread[WIDTH - 1].1;
+        self.cost[n][0] = node.aabb.half_area() + spread[W - 1].0;
+        self.lanes_left[n] = spread[W - 1].1;
         for (k, &(c, j)) in spread.iter().enumerate().skip(1) {
             let fewer = self.cost[n][k - 1];
             (self.cost[n][k], self.split[n][k]) = if c < fewer {
@@ -167,27 +141,32 @@ impl Collapse {
             self.children(bvh2, l + 1, k - j, out);
         }
     }
+
+    /// The (at most W) children of the wide node covering binary inner node `i`.
+    fn wide_children(&self, bvh2: &Bvh2, i: usize) -> Vec<usize> {
+        let first = bvh2.nodes[i].first_index as usize;
+        let j = self.lanes_left[i] as usize;
+        let mut kids = Vec::with_capacity(W);
+        self.children(bvh2, first, j, &mut kids);
+        self.children(bvh2, first + 1, W - j, &mut kids);
+        kids
+    }
 }
 
 /// Appends the wide node covering binary inner node `i` with the children `collapse`
 /// chose; returns its index. `depth` counts the levels below it.
 fn emit_wide(
     bvh2: &Bvh2,
-    collapse: &Collapse,
+    collapse: &Collapse<WIDTH>,
     i: usize,
     out: &mut WideOut,
     depth: &mut usize,
 ) -> u32 {
     let slot = out.nodes.len();
     out.nodes.push(WideNode::EMPTY);
-    let first = bvh2.nodes[i].first_index as usize;
-    let j = collapse.lanes_left[i] as usize;
-    let mut kids = Vec::with_capacity(WIDTH);
-    collapse.children(bvh2, first, j, &mut kids);
-    collapse.children(bvh2, first + 1, WIDTH - j, &mut kids);
     let mut node = WideNode::EMPTY;
     let mut below = 0;
-    for (lane, &k) in kids.iter().enumerate() {
+    for (lane, &k) in collapse.wide_children(bvh2, i).iter().enumerate() {
         let n = &bvh2.nodes[k];
         node.set_box(lane, n.aabb.min.into(), n.aabb.max.into());
         node.child[lane] = if n.prim_count > 0 {
@@ -204,8 +183,40 @@ fn emit_wide(
     slot as u32
 }
 
+/// Appends the GPU node covering binary inner node `i` with the children `collapse` chose,
+/// its subtree after it; returns its index. `pending` is the most children its traversal
+/// can leave on the stack: per node on a path down, all its children but the one entered.
+fn emit_gpu(
+    bvh2: &Bvh2,
+    collapse: &Collapse<GPU_WIDTH>,
+    i: usize,
+    nodes: &mut Vec<GpuNode>,
+    pending: &mut usize,
+) -> u32 {
+    let slot = nodes.len();
+    nodes.push(GpuNode::default());
+    let mut node = GpuNode::default();
+    let kids = collapse.wide_children(bvh2, i);
+    let mut below = 0;
+    for (lane, &k) in kids.iter().enumerate() {
+        let n = &bvh2.nodes[k];
+        let child = if n.prim_count > 0 {
+            GpuNode::leaf(n.first_index, n.prim_count)
+        } else {
+            let mut p = 0;
+            let c = emit_gpu(bvh2, collapse, k, nodes, &mut p);
+            below = below.max(p);
+            c
+        };
+        node.set(lane, n.aabb.min.into(), n.aabb.max.into(), child);
+    }
+    *pending = kids.len() - 1 + below;
+    nodes[slot] = node;
+    slot as u32
+}
+
 /// Both layouts of the tree over `tris` (input order), or empty ones for no triangles.
-pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<FlatNode>, Wide), BvhError> {
+pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<GpuNode>, Wide), BvhError> {
     if tris.len() >= MAX_TRIANGLES {
         return Err(BvhError::TooManyTriangles(tris.len()));
     }
@@ -222,34 +233,47 @@ pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<FlatNode>, Wide), Bvh
         ids: &ids,
     };
     let root = &bvh2.nodes[0];
-    let flat = if root.prim_count > 0 {
-        // A single leaf: one node whose two children (and first lane) are that leaf.
-        let leaf = FlatChild {
-            min: root.aabb.min.to_array(),
-            max: root.aabb.max.to_array(),
-            first: root.first_index,
-            count: root.prim_count,
-        };
+    let gpu = if root.prim_count > 0 {
+        // A single leaf: one node of each layout, its first lane that leaf.
+        let (min, max) = (root.aabb.min.into(), root.aabb.max.into());
         let mut node = WideNode::EMPTY;
-        node.set_box(0, root.aabb.min.into(), root.aabb.max.into());
+        node.set_box(0, min, max);
         node.child[0] = out.leaf(root.first_index, root.prim_count);
         out.nodes.push(node);
-        vec![FlatNode::new(leaf, leaf)]
+        let mut gpu = GpuNode::default();
+        gpu.set(
+            0,
+            min,
+            max,
+            GpuNode::leaf(root.first_index, root.prim_count),
+        );
+        vec![gpu]
     } else {
-        let mut flat = Vec::new();
-        let (mut flat_depth, mut wide_depth) = (0, 0);
-        emit_flat(&bvh2, 0, &mut flat, &mut flat_depth);
-        let collapse = Collapse::new(&bvh2);
-        emit_wide(&bvh2, &collapse, 0, &mut out, &mut wide_depth);
-        // A wide level spans at least one binary level, and pushes at most WIDTH - 1 entries.
-        debug_assert!(wide_depth <= flat_depth);
-        if flat_depth > crate::FLAT_STACK_SIZE || (WIDTH - 1) * wide_depth + 1 > STACK_SIZE {
-            return Err(BvhError::TooDeep(flat_depth));
+        let mut wide_depth = 0;
+        emit_wide(&bvh2, &Collapse::new(&bvh2), 0, &mut out, &mut wide_depth);
+        // Each wide level pushes at most WIDTH - 1 entries.
+        let needed = (WIDTH - 1) * wide_depth + 1;
+        if needed > STACK_SIZE {
+            return Err(BvhError::TooDeep {
+                layout: "CPU",
+                needed,
+                capacity: STACK_SIZE,
+            });
         }
-        flat
+        let mut gpu = Vec::new();
+        let mut pending = 0;
+        emit_gpu(&bvh2, &Collapse::new(&bvh2), 0, &mut gpu, &mut pending);
+        if pending > GPU_STACK_SIZE {
+            return Err(BvhError::TooDeep {
+                layout: "GPU",
+                needed: pending,
+                capacity: GPU_STACK_SIZE,
+            });
+        }
+        gpu
     };
     let (nodes, leaves) = (out.nodes, out.leaves);
-    Ok((flat, Wide { nodes, leaves, ids }))
+    Ok((gpu, Wide { nodes, leaves, ids }))
 }
 
 /// `tris` as plain arrays for the watertight test.

@@ -4,8 +4,8 @@
 //! reinsertion and SAH leaf collapse) over a mesh's triangles and lays the tree out twice
 //! over one leaf order of the triangles:
 //!
-//! - a binary tree of 64-byte [`FlatNode`]s holding both children's boxes, which the GPU
-//!   backend uploads and traverses in WGSL (`crates/render-gpu/src/shaders/geometry.wgsl`);
+//! - a 4-wide tree of 128-byte [`GpuNode`]s, one cache line each, which the GPU backend
+//!   uploads and traverses in WGSL (`crates/render-gpu/src/shaders/traversal.wgsl`);
 //! - an 8-wide tree with structure-of-arrays child boxes and leaves of four triangles in
 //!   structure-of-arrays lanes, which [`Bvh::closest`] and [`Bvh::any_hit`] traverse on the
 //!   CPU (with AVX2 where the CPU has it).
@@ -17,26 +17,22 @@
 
 mod box_test;
 mod build;
-mod flat;
+mod gpu_node;
 mod tri4;
 mod watertight;
 mod wide;
 
 pub use build::BvhError;
-pub use flat::FlatNode;
+pub use gpu_node::{GPU_EMPTY, GPU_LEAF, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
 pub use watertight::{T_MIN, TriangleVerts, WatertightRay};
 
 use glam::{Vec3, Vec3A};
 use wide::Wide;
 
-/// The deepest binary tree a build accepts: the GPU traversal's stack holds this many
-/// entries (one pending child per level).
-pub const FLAT_STACK_SIZE: usize = 64;
-
 /// A BVH over a list of triangles (the "input order"), in two layouts over one leaf order.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    flat: Vec<FlatNode>,
+    gpu: Vec<GpuNode>,
     wide: Wide,
 }
 
@@ -45,8 +41,8 @@ impl Bvh {
     /// triangles may be included: they are never hit. No triangles gives an empty BVH
     /// that nothing hits.
     pub fn build(tris: &[[Vec3; 3]]) -> Result<Self, BvhError> {
-        let (flat, wide) = build::build(&build::to_verts(tris))?;
-        Ok(Self { flat, wide })
+        let (gpu, wide) = build::build(&build::to_verts(tris))?;
+        Ok(Self { gpu, wide })
     }
 
     /// The number of triangles.
@@ -54,9 +50,9 @@ impl Bvh {
         self.wide.ids.len()
     }
 
-    /// The binary tree for the GPU; node 0 is the root. Empty for an empty BVH.
-    pub fn flat_nodes(&self) -> &[FlatNode] {
-        &self.flat
+    /// The 4-wide tree for the GPU; node 0 is the root. Empty for an empty BVH.
+    pub fn gpu_nodes(&self) -> &[GpuNode] {
+        &self.gpu
     }
 
     /// The leaf order: position k of the leaves' triangle ranges holds input triangle

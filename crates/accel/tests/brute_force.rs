@@ -4,7 +4,7 @@
 
 use glam::{Vec3, Vec3A};
 use proptest::prelude::*;
-use steadyray_accel::{Bvh, T_MIN, WatertightRay};
+use steadyray_accel::{Bvh, GPU_EMPTY, GPU_LEAF, GpuNode, T_MIN, WatertightRay};
 
 fn brute_closest(tris: &[[Vec3; 3]], o: Vec3A, d: Vec3A, t_max: f32) -> Option<(f32, u32)> {
     let wr = WatertightRay::new(o, d);
@@ -102,6 +102,49 @@ proptest! {
             }
         }
     }
+
+    /// The GPU's tree (traversed only in WGSL) holds every triangle in exactly one leaf,
+    /// inside the box of every lane above it, so a traversal with conservative box tests
+    /// finds every hit; the GPU tests check its hits against the CPU's.
+    #[test]
+    fn gpu_tree_holds_every_triangle_once_inside_its_boxes(tris in mesh()) {
+        let bvh = Bvh::build(&tris).unwrap();
+        let nodes = bvh.gpu_nodes();
+        let mut seen = vec![0u32; tris.len()];
+        let mut reached = vec![0u32; nodes.len()];
+        reached[0] = 1;
+        // (node, box of the lane that leads to it)
+        let mut todo = vec![(0usize, [Vec3::NEG_INFINITY, Vec3::INFINITY])];
+        while let Some((i, outer)) = todo.pop() {
+            let node: &GpuNode = &nodes[i];
+            prop_assert_ne!(node.child[0], GPU_EMPTY, "node {} has no first child", i);
+            for lane in 0..4 {
+                let child = node.child[lane];
+                if child == GPU_EMPTY {
+                    continue;
+                }
+                let lo = Vec3::new(node.min_x[lane], node.min_y[lane], node.min_z[lane]);
+                let hi = Vec3::new(node.max_x[lane], node.max_y[lane], node.max_z[lane]);
+                prop_assert!(lo.cmpge(outer[0]).all() && hi.cmple(outer[1]).all());
+                if child & GPU_LEAF == 0 {
+                    reached[child as usize] += 1;
+                    todo.push((child as usize, [lo, hi]));
+                    continue;
+                }
+                let (first, count) = (child & 0x07ff_ffff, (child >> 27) & 0xf);
+                prop_assert!((1..=4).contains(&count));
+                for k in first..first + count {
+                    let id = bvh.leaf_order()[k as usize] as usize;
+                    seen[k as usize] += 1;
+                    for v in tris[id] {
+                        prop_assert!(v.cmpge(lo).all() && v.cmple(hi).all());
+                    }
+                }
+            }
+        }
+        prop_assert!(seen.iter().all(|&n| n == 1), "leaf-order positions in leaves: {:?}", seen);
+        prop_assert!(reached.iter().all(|&n| n == 1), "nodes reached: {:?}", reached);
+    }
 }
 
 #[test]
@@ -109,7 +152,7 @@ fn empty_and_single_triangle() {
     let bvh = Bvh::build(&[]).unwrap();
     assert_eq!(bvh.closest(Vec3A::ZERO, Vec3A::Z, f32::INFINITY), None);
     assert!(!bvh.any_hit(Vec3A::ZERO, Vec3A::Z, f32::INFINITY));
-    assert!(bvh.flat_nodes().is_empty());
+    assert!(bvh.gpu_nodes().is_empty());
     let tri = [
         Vec3::new(-1.0, -1.0, 2.0),
         Vec3::new(1.0, -1.0, 2.0),
@@ -122,7 +165,7 @@ fn empty_and_single_triangle() {
     );
     assert!(bvh.any_hit(Vec3A::ZERO, Vec3A::Z, 3.0));
     assert!(!bvh.any_hit(Vec3A::ZERO, Vec3A::Z, 2.0));
-    assert_eq!(bvh.flat_nodes().len(), 1);
+    assert_eq!(bvh.gpu_nodes().len(), 1);
 }
 
 /// A grid of quads split into triangle pairs: every ray through the grid's interior hits,

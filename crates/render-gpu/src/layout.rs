@@ -6,12 +6,16 @@
 use bytemuck::{Pod, Zeroable};
 use steadyray_render::MAX_DEPTH;
 
-/// A node of the triangle BVH (WGSL `BvhNode`): the flattened binary layout of
+/// A node of the triangle BVH (WGSL `BvhNode`): the 4-wide GPU layout of
 /// `steadyray-accel`, uploaded as built.
-pub use steadyray_accel::FlatNode as GpuBvhNode;
+pub use steadyray_accel::GpuNode as GpuBvhNode;
 
-/// Entries of the WGSL BVH traversal stack: the deepest tree the build accepts.
-pub const BVH_STACK_SIZE: u32 = steadyray_accel::FLAT_STACK_SIZE as u32;
+/// Entries of the WGSL BVH traversal stack: the most a tree the build accepts can push.
+pub const BVH_STACK_SIZE: u32 = steadyray_accel::GPU_STACK_SIZE as u32;
+/// Set in a BVH child entry for a leaf (`BVH_LEAF | count << 27 | first`).
+pub const BVH_LEAF: u32 = steadyray_accel::GPU_LEAF;
+/// The BVH child entry of an unused lane.
+pub const BVH_EMPTY: u32 = steadyray_accel::GPU_EMPTY;
 
 /// Workgroups are `WORKGROUP_SIZE` × `WORKGROUP_SIZE` threads, one thread per pixel.
 pub const WORKGROUP_SIZE: u32 = 8;
@@ -300,14 +304,14 @@ mod tests {
             (
                 "BvhNode",
                 rust_layout!(GpuBvhNode {
-                    left_min,
-                    left_first,
-                    left_max,
-                    left_count,
-                    right_min,
-                    right_first,
-                    right_max,
-                    right_count
+                    min_x,
+                    min_y,
+                    min_z,
+                    max_x,
+                    max_y,
+                    max_z,
+                    child,
+                    pad
                 }),
             ),
             (
@@ -391,6 +395,8 @@ mod tests {
             ("COUNTER_SLOTS", COUNTER_SLOTS),
             ("REDUCE_SIZE", REDUCE_SIZE),
             ("BVH_STACK_SIZE", BVH_STACK_SIZE),
+            ("BVH_LEAF", BVH_LEAF),
+            ("BVH_EMPTY", BVH_EMPTY),
             ("CAST_TILE", CAST_TILE),
             ("CAST_MISS", CAST_MISS),
             ("SHAPE_SPHERE", SHAPE_SPHERE),

@@ -144,7 +144,7 @@ impl GpuRayCaster {
         let ctx = GpuContext::new(options)?;
         let device = &ctx.device;
         check_binding_size(&ctx, "triangle", packed.len() as u64 * 64)?;
-        check_binding_size(&ctx, "BVH node", bvh.flat_nodes().len() as u64 * 64)?;
+        check_binding_size(&ctx, "BVH node", size_of_val(bvh.gpu_nodes()) as u64)?;
 
         let module = shader_module(device, RAYCAST_SOURCE)?;
         let read = wgpu::BufferBindingType::Storage { read_only: true };
@@ -169,7 +169,7 @@ impl GpuRayCaster {
         let mut bvh_nodes = GrowBuffer::new(device, "cast bvh nodes", storage, 0);
         scoped(device, "cannot upload the mesh", || {
             triangles.write(device, &ctx.queue, bytemuck::cast_slice(&packed));
-            bvh_nodes.write(device, &ctx.queue, bytemuck::cast_slice(bvh.flat_nodes()));
+            bvh_nodes.write(device, &ctx.queue, bytemuck::cast_slice(bvh.gpu_nodes()));
         })?;
         let caster = Self {
             bind_group_layout,

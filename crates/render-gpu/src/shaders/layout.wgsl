@@ -11,8 +11,12 @@ const MAX_DEPTH: u32 = 64u;
 const COUNTER_SLOTS: u32 = 67u;
 // Threads of the ray-count reduction.
 const REDUCE_SIZE: u32 = 256u;
-// Entries of the BVH traversal stack (steadyray_accel::FLAT_STACK_SIZE).
+// Entries of the BVH traversal stack (steadyray_accel::GPU_STACK_SIZE).
 const BVH_STACK_SIZE: u32 = 64u;
+// A BVH child entry: an inner node's index, a leaf BVH_LEAF | count << 27 | first, or
+// BVH_EMPTY for an unused lane (node 0 is the root, nobody's child).
+const BVH_LEAF: u32 = 0x80000000u;
+const BVH_EMPTY: u32 = 0u;
 
 // The ray caster (raycast.wgsl): CAST_TILE × CAST_TILE threads per workgroup, one pixel
 // each; CAST_MISS is the triangle id of a ray that hits nothing.
@@ -77,18 +81,17 @@ struct Triangle {
     pad2: u32,
 }
 
-// A node of the triangle BVH (GpuBvhNode, steadyray_accel::FlatNode): both children's
-// boxes; a child is an inner node (count 0, first its index) or a leaf of count triangles
-// starting at first. Node 0 is the root.
+// A node of the 4-wide triangle BVH (GpuBvhNode, steadyray_accel::GpuNode): per lane a
+// child's box and the child entry. Node 0 is the root. 128 bytes, one cache line.
 struct BvhNode {
-    left_min: vec3<f32>,
-    left_first: u32,
-    left_max: vec3<f32>,
-    left_count: u32,
-    right_min: vec3<f32>,
-    right_first: u32,
-    right_max: vec3<f32>,
-    right_count: u32,
+    min_x: vec4<f32>,
+    min_y: vec4<f32>,
+    min_z: vec4<f32>,
+    max_x: vec4<f32>,
+    max_y: vec4<f32>,
+    max_z: vec4<f32>,
+    child: vec4<u32>,
+    pad: vec4<u32>,
 }
 
 // colour: albedo, reflectance, tint or radiance by kind; colour_b and checker_size > 0 for a

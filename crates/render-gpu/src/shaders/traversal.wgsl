@@ -1,6 +1,6 @@
 // Ray queries against the triangle mesh, shared by the integrator (geometry.wgsl) and the ray
-// caster (raycast.wgsl): the watertight ray-triangle test and the traversal of the flattened
-// binary BVH, written as steadyray-accel writes them on the CPU so that both round alike.
+// caster (raycast.wgsl): the watertight ray-triangle test, written as steadyray-accel writes
+// it on the CPU so that both round alike, and the traversal of the 4-wide BVH.
 // Like the CPU's, the box tests are widened so that the traversal finds exactly the hits of
 // a loop over all triangles, and ties at the same t go to the lowest triangle id.
 //
@@ -97,19 +97,13 @@ fn hit_triangle(tri: Triangle, origin: vec3<f32>, sh: Shear, t_max: f32) -> f32 
     return NO_HIT;
 }
 
-// A BVH child reference: an inner node index, or LEAF_BIT | count << 27 | first.
-const LEAF_BIT: u32 = 0x80000000u;
 // Box tests widen the entry and exit distances by 2^-20 relative, as the CPU's do.
 const BOX_NEAR_SCALE: f32 = 0.99999904632568359375;
 const BOX_FAR_SCALE: f32 = 1.00000095367431640625;
 // A box the ray misses has this entry distance (above NO_HIT).
 const BOX_MISS: f32 = 3.4e38;
 
-fn child_ref(first: u32, count: u32) -> u32 {
-    return select(first, LEAF_BIT | (count << 27u) | first, count > 0u);
-}
-
-// The triangles of leaf reference `leaf` (as made by `child_ref`): positions [x, y).
+// The triangles of leaf entry `leaf` (BVH_LEAF | count << 27 | first): positions [x, y).
 fn leaf_range(leaf: u32) -> vec2<u32> {
     let first = leaf & 0x07ffffffu;
     return vec2<u32>(first, first + ((leaf >> 27u) & 0xfu));
@@ -129,23 +123,71 @@ fn make_box_ray(ray: Ray) -> BoxRay {
     return BoxRay(ray.origin, 1.0 / select(ray.dir, vec3<f32>(1.0), flat), flat);
 }
 
-// The widened entry distance of the box [lo, hi] when the ray meets it on [0, t_max],
-// else BOX_MISS.
-fn box_entry(lo: vec3<f32>, hi: vec3<f32>, br: BoxRay, t_max: f32) -> f32 {
-    let a = (lo - br.origin) * br.inv;
-    let b = (hi - br.origin) * br.inv;
-    let inside = br.origin >= lo & br.origin <= hi;
-    let t0 = select(min(a, b), select(vec3<f32>(BOX_MISS), vec3<f32>(-BOX_MISS), inside), br.flat);
-    let t1 = select(max(a, b), select(vec3<f32>(-BOX_MISS), vec3<f32>(BOX_MISS), inside), br.flat);
-    let near = max(max(t0.x, t0.y), max(t0.z, 0.0)) * BOX_NEAR_SCALE;
-    let far = min(min(t1.x, t1.y), t1.z) * BOX_FAR_SCALE;
-    return select(BOX_MISS, near, near <= min(far, t_max));
+// Per lane, the distances at which the ray enters and leaves one axis' slabs.
+struct Slabs {
+    enter: vec4<f32>,
+    leave: vec4<f32>,
 }
 
-// The traversal stack: pending children and their box entry distances, one pending child
-// per tree level. It lives at module scope because WGSL zero-initialises every variable:
-// a function's array would be zeroed (2 × BVH_STACK_SIZE words of private memory) on every
-// query, a module-scope one once per invocation. The two queries below never nest.
+fn slabs(lo: vec4<f32>, hi: vec4<f32>, origin: f32, inv: f32, flat: bool) -> Slabs {
+    let o = vec4<f32>(origin);
+    let a = (lo - o) * inv;
+    let b = (hi - o) * inv;
+    let inside = o >= lo & o <= hi;
+    let enter = select(vec4<f32>(BOX_MISS), vec4<f32>(-BOX_MISS), inside);
+    let leave = select(vec4<f32>(-BOX_MISS), vec4<f32>(BOX_MISS), inside);
+    return Slabs(select(min(a, b), enter, flat), select(max(a, b), leave, flat));
+}
+
+// A node's children in the order to visit them: by widened entry distance, nearest first,
+// the boxes the ray misses on [0, t_max] (and unused lanes) last at BOX_MISS.
+struct Children {
+    entry: vec4<f32>,
+    child: vec4<u32>,
+}
+
+// Two compare-exchanges at once: (a.x, b.x) and (a.y, b.y) each become (nearer, farther).
+struct SortedPairs {
+    near_entry: vec2<f32>,
+    near_child: vec2<u32>,
+    far_entry: vec2<f32>,
+    far_child: vec2<u32>,
+}
+
+fn sort_pairs(a: vec2<f32>, ca: vec2<u32>, b: vec2<f32>, cb: vec2<u32>) -> SortedPairs {
+    let swap = b < a;
+    return SortedPairs(select(a, b, swap), select(ca, cb, swap), select(b, a, swap), select(cb, ca, swap));
+}
+
+fn ordered_children(node: BvhNode, br: BoxRay, t_max: f32) -> Children {
+    let x = slabs(node.min_x, node.max_x, br.origin.x, br.inv.x, br.flat.x);
+    let y = slabs(node.min_y, node.max_y, br.origin.y, br.inv.y, br.flat.y);
+    let z = slabs(node.min_z, node.max_z, br.origin.z, br.inv.z, br.flat.z);
+    let near = max(max(x.enter, y.enter), max(z.enter, vec4<f32>(0.0))) * BOX_NEAR_SCALE;
+    let far = min(min(x.leave, y.leave), z.leave) * BOX_FAR_SCALE;
+    let hit = near <= min(far, vec4<f32>(t_max)) & node.child != vec4<u32>(BVH_EMPTY);
+    let d = select(vec4<f32>(BOX_MISS), near, hit);
+    let c = node.child;
+    // The four-lane sorting network: (0 1)(2 3), then (0 2)(1 3), then (1 2).
+    let s = sort_pairs(d.xz, c.xz, d.yw, c.yw);
+    let t = sort_pairs(
+        vec2<f32>(s.near_entry.x, s.far_entry.x),
+        vec2<u32>(s.near_child.x, s.far_child.x),
+        vec2<f32>(s.near_entry.y, s.far_entry.y),
+        vec2<u32>(s.near_child.y, s.far_child.y),
+    );
+    let u = sort_pairs(t.near_entry.yy, t.near_child.yy, t.far_entry.xx, t.far_child.xx);
+    return Children(
+        vec4<f32>(t.near_entry.x, u.near_entry.x, u.far_entry.x, t.far_entry.y),
+        vec4<u32>(t.near_child.x, u.near_child.x, u.far_child.x, t.far_child.y),
+    );
+}
+
+// The traversal stack: pending children and their box entry distances. It lives at module
+// scope because WGSL zero-initialises every variable: a function's array would be zeroed
+// (2 × BVH_STACK_SIZE words of private memory) on every query, a module-scope one once per
+// invocation. The two queries below never nest. The build refuses trees whose traversal
+// could push more than BVH_STACK_SIZE children.
 var<private> bvh_stack_ref: array<u32, BVH_STACK_SIZE>;
 var<private> bvh_stack_t: array<f32, BVH_STACK_SIZE>;
 
@@ -166,27 +208,27 @@ fn closest_triangle(ray: Ray, t_max: f32) -> TriangleHit {
     var sp = 0u;
     var cur = 0u;
     loop {
-        if (cur & LEAF_BIT) == 0u {
-            let node = bvh_nodes[cur];
-            let tl = box_entry(node.left_min, node.left_max, br, best.t);
-            let tr = box_entry(node.right_min, node.right_max, br, best.t);
-            let rl = child_ref(node.left_first, node.left_count);
-            let rr = child_ref(node.right_first, node.right_count);
-            if tl != BOX_MISS && tr != BOX_MISS {
-                // Nearer child first; the other waits on the stack with its entry distance.
-                let left_first = tl <= tr;
-                bvh_stack_ref[sp] = select(rl, rr, left_first);
-                bvh_stack_t[sp] = select(tl, tr, left_first);
-                sp++;
-                cur = select(rr, rl, left_first);
-                continue;
-            }
-            if tl != BOX_MISS {
-                cur = rl;
-                continue;
-            }
-            if tr != BOX_MISS {
-                cur = rr;
+        if (cur & BVH_LEAF) == 0u {
+            let kids = ordered_children(bvh_nodes[cur], br, best.t);
+            if kids.entry.x != BOX_MISS {
+                // The nearest child next; the others (a prefix of the sorted lanes) wait on
+                // the stack, the nearer on top.
+                if kids.entry.y != BOX_MISS {
+                    if kids.entry.z != BOX_MISS {
+                        if kids.entry.w != BOX_MISS {
+                            bvh_stack_ref[sp] = kids.child.w;
+                            bvh_stack_t[sp] = kids.entry.w;
+                            sp++;
+                        }
+                        bvh_stack_ref[sp] = kids.child.z;
+                        bvh_stack_t[sp] = kids.entry.z;
+                        sp++;
+                    }
+                    bvh_stack_ref[sp] = kids.child.y;
+                    bvh_stack_t[sp] = kids.entry.y;
+                    sp++;
+                }
+                cur = kids.child.x;
                 continue;
             }
         } else {
@@ -223,24 +265,22 @@ fn any_triangle(ray: Ray, t_max: f32) -> bool {
     var sp = 0u;
     var cur = 0u;
     loop {
-        if (cur & LEAF_BIT) == 0u {
-            let node = bvh_nodes[cur];
-            let hit_l = box_entry(node.left_min, node.left_max, br, t_max) != BOX_MISS;
-            let hit_r = box_entry(node.right_min, node.right_max, br, t_max) != BOX_MISS;
-            let rl = child_ref(node.left_first, node.left_count);
-            let rr = child_ref(node.right_first, node.right_count);
-            if hit_l && hit_r {
-                bvh_stack_ref[sp] = rr;
-                sp++;
-                cur = rl;
-                continue;
-            }
-            if hit_l {
-                cur = rl;
-                continue;
-            }
-            if hit_r {
-                cur = rr;
+        if (cur & BVH_LEAF) == 0u {
+            let kids = ordered_children(bvh_nodes[cur], br, t_max);
+            if kids.entry.x != BOX_MISS {
+                if kids.entry.y != BOX_MISS {
+                    if kids.entry.z != BOX_MISS {
+                        if kids.entry.w != BOX_MISS {
+                            bvh_stack_ref[sp] = kids.child.w;
+                            sp++;
+                        }
+                        bvh_stack_ref[sp] = kids.child.z;
+                        sp++;
+                    }
+                    bvh_stack_ref[sp] = kids.child.y;
+                    sp++;
+                }
+                cur = kids.child.x;
                 continue;
             }
         } else {

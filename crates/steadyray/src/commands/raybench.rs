@@ -33,7 +33,7 @@ use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
 pub enum RaybenchBackend {
     /// The 8-wide BVH on the CPU, rayon tasks over chunks of rays.
     Cpu,
-    /// The binary BVH in WGSL on a GPU adapter (software ones such as lavapipe included;
+    /// The 4-wide BVH in WGSL on a GPU adapter (software ones such as lavapipe included;
     /// `STEADYRAY_ADAPTER=name` picks one by name).
     Gpu,
 }
