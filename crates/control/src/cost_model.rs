@@ -7,7 +7,11 @@
 //! standard deviations (1.4826 · MAD of recent relative residuals, floored) is not fitted.
 //! If `confirm` outliers in a row lie on the same side, the cost really changed (a heavier
 //! scene, another machine state): old frames are then forgotten and the model restarts from
-//! the confirming ones.
+//! the confirming ones. So it does after [`DRIFT_RUN`] fitted frames in a row that all ran
+//! slower (or all faster) than predicted by more than [`DRIFT_K`] robust standard
+//! deviations: a cost that drifts a little each frame (a mesh filling more of the view) is
+//! never an outlier, and a line fitted across the drift blames it on the fixed cost, which
+//! then makes every cut far too deep.
 
 use std::collections::VecDeque;
 
@@ -15,6 +19,13 @@ use std::collections::VecDeque;
 const RESIDUAL_WINDOW: usize = 32;
 /// How many recent prediction errors [`CostModel::recent_errors`] keeps.
 pub const ERROR_WINDOW: usize = 48;
+/// Fitted frames in a row off their prediction on one side that confirm a drift of cost.
+pub const DRIFT_RUN: usize = 3;
+/// How far off (robust standard deviations) a fitted frame counts towards a drift. Three in
+/// a row beyond 2 on one side happen by chance about once in 40,000 frames of Gaussian
+/// noise; at 1.5 a coarse (1 ms) timer's rounding, which errs on one side for many frames
+/// at a steady load, set off drifts that moved the quality for nothing.
+pub const DRIFT_K: f64 = 2.0;
 
 /// Parameters of [`CostModel`].
 #[derive(Clone, Debug, PartialEq)]
@@ -72,6 +83,9 @@ pub struct CostModel {
     residuals: VecDeque<f64>,
     errors: VecDeque<f64>,
     pending: Vec<(f64, f64)>,
+    /// The current run of fitted frames off their prediction on one side (`drift_above`).
+    drift: Vec<(f64, f64)>,
+    drift_above: bool,
 }
 
 impl CostModel {
@@ -86,6 +100,8 @@ impl CostModel {
             residuals: VecDeque::with_capacity(RESIDUAL_WINDOW),
             errors: VecDeque::with_capacity(ERROR_WINDOW),
             pending: Vec::new(),
+            drift: Vec::new(),
+            drift_above: false,
         }
     }
 
@@ -132,9 +148,20 @@ impl CostModel {
             self.errors.pop_front();
         }
         self.errors.push_back(rel);
-        let limit = self.params.outlier_k * self.sigma().max(self.params.min_sigma_ms / pred);
-        if rel.abs() <= limit {
+        let sigma = self.sigma().max(self.params.min_sigma_ms / pred);
+        if rel.abs() <= self.params.outlier_k * sigma {
             self.pending.clear();
+            if rel.abs() <= DRIFT_K * sigma || (rel > 0.0) != self.drift_above {
+                self.drift.clear();
+            }
+            if rel.abs() > DRIFT_K * sigma {
+                self.drift_above = rel > 0.0;
+                self.drift.push((x, tp_ms));
+            }
+            if self.drift.len() >= DRIFT_RUN {
+                let frames = std::mem::take(&mut self.drift);
+                return self.restart_from(frames);
+            }
             if self.residuals.len() == RESIDUAL_WINDOW {
                 self.residuals.pop_front();
             }
@@ -142,6 +169,7 @@ impl CostModel {
             self.add(x, tp_ms);
             return Fit::Accepted;
         }
+        self.drift.clear();
         let same_side = self
             .pending
             .first()
@@ -153,12 +181,20 @@ impl CostModel {
         if self.pending.len() < self.params.confirm as usize {
             return Fit::Outlier;
         }
+        let frames = std::mem::take(&mut self.pending);
+        self.restart_from(frames)
+    }
+
+    /// Forgets every frame and refits to `frames` (x, y) alone: the cost has changed.
+    fn restart_from(&mut self, frames: Vec<(f64, f64)>) -> Fit {
         self.sums = [0.0; 5];
-        for (px, py) in std::mem::take(&mut self.pending) {
-            self.add(px, py);
+        for (x, y) in frames {
+            self.add(x, y);
         }
         self.residuals.clear();
         self.errors.clear();
+        self.pending.clear();
+        self.drift.clear();
         Fit::Shifted
     }
 
@@ -246,6 +282,37 @@ mod tests {
         assert_eq!(m.observe(30e6, 32.0), Fit::Outlier);
         assert_eq!(m.observe(30e6, 32.0), Fit::Shifted);
         assert!((m.predict_ms(30e6).unwrap() - 32.0).abs() < 1.0);
+    }
+
+    #[test]
+    fn a_steady_drift_restarts_the_fit_instead_of_bending_it() {
+        let mut m = CostModel::new(CostParams::default());
+        for i in 0..20 {
+            let rays = 30e6 + 2e6 * f64::from(i % 5);
+            m.observe(rays, 0.3 + 0.5e-6 * rays);
+        }
+        // The cost per ray grows 3 % a frame while a controller cuts the rays 2 % a frame:
+        // no frame is an outlier, and a line through them all would put the growth in the
+        // fixed cost.
+        let (mut ms_per_ray, mut rays) = (0.5e-6, 34e6);
+        let mut shifted = false;
+        for _ in 0..30 {
+            ms_per_ray *= 1.03;
+            rays *= 0.98;
+            shifted |= m.observe(rays, 0.3 + ms_per_ray * rays) == Fit::Shifted;
+        }
+        assert!(shifted);
+        // Without the restarts: fixed 11.2 ms, and a cut to half the rays predicted at 16.1
+        // ms for a true 11.6 (so the cut went twice as deep as it had to).
+        assert!(m.fixed_ms() < 5.0, "fixed {}", m.fixed_ms());
+        for r in [rays, 0.5 * rays] {
+            let truth = 0.3 + ms_per_ray * r;
+            let predicted = m.predict_ms(r).unwrap();
+            assert!(
+                (predicted / truth - 1.0).abs() < 0.15,
+                "{r}: {predicted} vs {truth}"
+            );
+        }
     }
 
     #[test]

@@ -493,7 +493,9 @@ impl Controller for Predictive {
         };
         let drift = self.params.measured_cut && self.above_run >= DRIFT_FRAMES;
         let overload = fit == Fit::Outlier;
-        if let Some(e) = expected.filter(|_| !hitch && (overload || drift)) {
+        // A model just refitted to the latest frames already explains them.
+        let refitted = fit == Fit::Shifted;
+        if let Some(e) = expected.filter(|_| !hitch && !refitted && (overload || drift)) {
             self.surprise = (report.tp_ms / e).max(1.0);
         }
         self.update_load(report);
