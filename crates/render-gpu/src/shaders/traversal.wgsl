@@ -156,7 +156,12 @@ struct SortedPairs {
 
 fn sort_pairs(a: vec2<f32>, ca: vec2<u32>, b: vec2<f32>, cb: vec2<u32>) -> SortedPairs {
     let swap = b < a;
-    return SortedPairs(select(a, b, swap), select(ca, cb, swap), select(b, a, swap), select(cb, ca, swap));
+    return SortedPairs(
+        select(a, b, swap),
+        select(ca, cb, swap),
+        select(b, a, swap),
+        select(cb, ca, swap),
+    );
 }
 
 fn ordered_children(node: BvhNode, br: BoxRay, t_max: f32) -> Children {
