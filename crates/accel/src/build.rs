@@ -2,7 +2,7 @@
 //! boxes, then the two layouts, both collapsed from that binary tree by SAH over the same
 //! leaves: the 8-wide tree for the CPU and the 4-wide [`GpuNode`] tree for the GPU.
 
-use crate::gpu_node::{GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
+use crate::gpu_node::{GPU_WIDTH, GpuNode};
 use crate::tri4::Tri4;
 use crate::watertight::TriangleVerts;
 use crate::wide::{LEAF, STACK_SIZE, WIDTH, Wide, WideNode};
@@ -215,13 +215,28 @@ fn emit_gpu(
     slot as u32
 }
 
+/// The two layouts of a tree.
+pub(crate) struct Layouts {
+    pub gpu: Vec<GpuNode>,
+    /// The most children the GPU traversal can leave on its stack (see [`emit_gpu`]).
+    pub gpu_pending: usize,
+    pub wide: Wide,
+}
+
 /// Both layouts of the tree over `tris` (input order), or empty ones for no triangles.
-pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<GpuNode>, Wide), BvhError> {
+/// Fails when the CPU traversal's stack could overflow; the GPU's limit is checked where the
+/// GPU layout is asked for ([`crate::Bvh::gpu_nodes`]), so that a tree too deep for the GPU
+/// still serves the CPU.
+pub(crate) fn build(tris: &[TriangleVerts]) -> Result<Layouts, BvhError> {
     if tris.len() >= MAX_TRIANGLES {
         return Err(BvhError::TooManyTriangles(tris.len()));
     }
     if tris.is_empty() {
-        return Ok((Vec::new(), Wide::default()));
+        return Ok(Layouts {
+            gpu: Vec::new(),
+            gpu_pending: 0,
+            wide: Wide::default(),
+        });
     }
     let bvh2 = build_bvh2(tris);
     let ids = bvh2.primitive_indices.clone();
@@ -233,6 +248,7 @@ pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<GpuNode>, Wide), BvhE
         ids: &ids,
     };
     let root = &bvh2.nodes[0];
+    let mut gpu_pending = 0;
     let gpu = if root.prim_count > 0 {
         // A single leaf: one node of each layout, its first lane that leaf.
         let (min, max) = (root.aabb.min.into(), root.aabb.max.into());
@@ -261,19 +277,15 @@ pub(crate) fn build(tris: &[TriangleVerts]) -> Result<(Vec<GpuNode>, Wide), BvhE
             });
         }
         let mut gpu = Vec::new();
-        let mut pending = 0;
-        emit_gpu(&bvh2, &Collapse::new(&bvh2), 0, &mut gpu, &mut pending);
-        if pending > GPU_STACK_SIZE {
-            return Err(BvhError::TooDeep {
-                layout: "GPU",
-                needed: pending,
-                capacity: GPU_STACK_SIZE,
-            });
-        }
+        emit_gpu(&bvh2, &Collapse::new(&bvh2), 0, &mut gpu, &mut gpu_pending);
         gpu
     };
     let (nodes, leaves) = (out.nodes, out.leaves);
-    Ok((gpu, Wide { nodes, leaves, ids }))
+    Ok(Layouts {
+        gpu,
+        gpu_pending,
+        wide: Wide { nodes, leaves, ids },
+    })
 }
 
 /// `tris` as plain arrays for the watertight test.

@@ -33,6 +33,7 @@ use wide::Wide;
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     gpu: Vec<GpuNode>,
+    gpu_pending: usize,
     wide: Wide,
 }
 
@@ -41,8 +42,16 @@ impl Bvh {
     /// triangles may be included: they are never hit. No triangles gives an empty BVH
     /// that nothing hits.
     pub fn build(tris: &[[Vec3; 3]]) -> Result<Self, BvhError> {
-        let (gpu, wide) = build::build(&build::to_verts(tris))?;
-        Ok(Self { gpu, wide })
+        let build::Layouts {
+            gpu,
+            gpu_pending,
+            wide,
+        } = build::build(&build::to_verts(tris))?;
+        Ok(Self {
+            gpu,
+            gpu_pending,
+            wide,
+        })
     }
 
     /// The number of triangles.
@@ -50,9 +59,19 @@ impl Bvh {
         self.wide.ids.len()
     }
 
-    /// The 4-wide tree for the GPU; node 0 is the root. Empty for an empty BVH.
-    pub fn gpu_nodes(&self) -> &[GpuNode] {
-        &self.gpu
+    /// The 4-wide tree for the GPU; node 0 is the root. Empty for an empty BVH. Fails with
+    /// [`BvhError::TooDeep`] when its traversal could leave more children pending than the
+    /// GPU's stack holds ([`GPU_STACK_SIZE`]; the bunny subdivided to 17.8 M triangles
+    /// needs 48).
+    pub fn gpu_nodes(&self) -> Result<&[GpuNode], BvhError> {
+        if self.gpu_pending > GPU_STACK_SIZE {
+            return Err(BvhError::TooDeep {
+                layout: "GPU",
+                needed: self.gpu_pending,
+                capacity: GPU_STACK_SIZE,
+            });
+        }
+        Ok(&self.gpu)
     }
 
     /// The leaf order: position k of the leaves' triangle ranges holds input triangle

@@ -109,7 +109,7 @@ proptest! {
     #[test]
     fn gpu_tree_holds_every_triangle_once_inside_its_boxes(tris in mesh()) {
         let bvh = Bvh::build(&tris).unwrap();
-        let nodes = bvh.gpu_nodes();
+        let nodes = bvh.gpu_nodes().unwrap();
         let mut seen = vec![0u32; tris.len()];
         let mut reached = vec![0u32; nodes.len()];
         reached[0] = 1;
@@ -152,7 +152,7 @@ fn empty_and_single_triangle() {
     let bvh = Bvh::build(&[]).unwrap();
     assert_eq!(bvh.closest(Vec3A::ZERO, Vec3A::Z, f32::INFINITY), None);
     assert!(!bvh.any_hit(Vec3A::ZERO, Vec3A::Z, f32::INFINITY));
-    assert!(bvh.gpu_nodes().is_empty());
+    assert!(bvh.gpu_nodes().unwrap().is_empty());
     let tri = [
         Vec3::new(-1.0, -1.0, 2.0),
         Vec3::new(1.0, -1.0, 2.0),
@@ -165,7 +165,7 @@ fn empty_and_single_triangle() {
     );
     assert!(bvh.any_hit(Vec3A::ZERO, Vec3A::Z, 3.0));
     assert!(!bvh.any_hit(Vec3A::ZERO, Vec3A::Z, 2.0));
-    assert_eq!(bvh.gpu_nodes().len(), 1);
+    assert_eq!(bvh.gpu_nodes().unwrap().len(), 1);
 }
 
 /// A grid of quads split into triangle pairs: every ray through the grid's interior hits,
@@ -208,5 +208,41 @@ fn grid_has_no_cracks() {
                 brute_closest(&tris, o, d, f32::INFINITY)
             );
         }
+    }
+}
+
+/// Triangles spaced ever wider along x make a chain of a tree: too deep for the GPU's
+/// 64-entry traversal stack (76 children could wait on it) but not for the CPU's. The CPU
+/// keeps tracing it; asking for the GPU layout is a clear error.
+#[test]
+fn a_tree_too_deep_for_the_gpu_still_serves_the_cpu() {
+    let tris: Vec<[Vec3; 3]> = (0..300)
+        .map(|i| {
+            let x = 1.3f32.powi(i);
+            [
+                Vec3::new(x, -1.0, -1.0),
+                Vec3::new(x, 2.0, -1.0),
+                Vec3::new(x, -1.0, 2.0),
+            ]
+        })
+        .collect();
+    let bvh = Bvh::build(&tris).unwrap();
+    let err = bvh.gpu_nodes().unwrap_err();
+    assert!(
+        matches!(
+            err,
+            steadyray_accel::BvhError::TooDeep { layout: "GPU", .. }
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("GPU traversal"), "{err}");
+    for (o, d) in [
+        (Vec3A::new(0.0, 0.0, 0.0), Vec3A::X),
+        (Vec3A::new(1e20, 0.1, 0.2), Vec3A::X),
+        (Vec3A::new(1e30, 0.3, 0.1), -Vec3A::X),
+    ] {
+        let expected = brute_closest(&tris, o, d, f32::INFINITY);
+        assert!(expected.is_some());
+        assert_eq!(bvh.closest(o, d, f32::INFINITY), expected);
     }
 }

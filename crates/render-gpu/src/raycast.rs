@@ -112,7 +112,8 @@ impl GpuRayCaster {
     /// Opens the adapter `options` choose and uploads `triangles` (corners in world space,
     /// in input order) in the leaf order of `bvh`, built over the same triangles, with its
     /// nodes. Fails with [`RenderError::Gpu`] ("no GPU adapter found (...)") when no adapter
-    /// qualifies, and with [`RenderError::Scene`] when `bvh` is not over `triangles`.
+    /// qualifies, and with [`RenderError::Scene`] when `bvh` is not over `triangles` or is too
+    /// deep for the GPU traversal's stack.
     pub fn new(
         options: &GpuOptions,
         triangles: &[[Vec3; 3]],
@@ -127,6 +128,9 @@ impl GpuRayCaster {
         }
         let triangle_count = u32::try_from(triangles.len())
             .map_err(|_| RenderError::Scene(format!("too many triangles: {}", triangles.len())))?;
+        let nodes = bvh
+            .gpu_nodes()
+            .map_err(|e| RenderError::Scene(e.to_string()))?;
         let packed: Vec<GpuTriangle> = bvh
             .leaf_order()
             .iter()
@@ -144,7 +148,7 @@ impl GpuRayCaster {
         let ctx = GpuContext::new(options)?;
         let device = &ctx.device;
         check_binding_size(&ctx, "triangle", packed.len() as u64 * 64)?;
-        check_binding_size(&ctx, "BVH node", size_of_val(bvh.gpu_nodes()) as u64)?;
+        check_binding_size(&ctx, "BVH node", size_of_val(nodes) as u64)?;
 
         let module = shader_module(device, RAYCAST_SOURCE)?;
         let read = wgpu::BufferBindingType::Storage { read_only: true };
@@ -169,7 +173,7 @@ impl GpuRayCaster {
         let mut bvh_nodes = GrowBuffer::new(device, "cast bvh nodes", storage, 0);
         scoped(device, "cannot upload the mesh", || {
             triangles.write(device, &ctx.queue, bytemuck::cast_slice(&packed));
-            bvh_nodes.write(device, &ctx.queue, bytemuck::cast_slice(bvh.gpu_nodes()));
+            bvh_nodes.write(device, &ctx.queue, bytemuck::cast_slice(nodes));
         })?;
         let caster = Self {
             bind_group_layout,

@@ -215,7 +215,7 @@ impl PackedScene {
                 ..self.triangles[i as usize]
             })
             .collect();
-        self.bvh_nodes = bvh.gpu_nodes().to_vec();
+        self.bvh_nodes = bvh.gpu_nodes()?.to_vec();
         Ok(())
     }
 }
