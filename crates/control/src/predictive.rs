@@ -7,7 +7,8 @@
 //!    that took [`HITCH_RATIO`] times its prediction or more is a hitch and changes nothing;
 //!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once with
 //!    predictions scaled by how much slower it ran; a second outlier on the same side
-//!    confirms a real change of cost and the model refits at once.
+//!    confirms a real change of cost and the model refits at once, as do three fitted frames
+//!    in a row well off their prediction on one side (a cost drifting a little each frame).
 //! 2. The [`RayModel`] of the frame gives the rays any candidate quality would trace. The
 //!    load's trend (the camera moves smoothly) is extrapolated one frame ahead: an
 //!    exponential average of the frame-to-frame growth of the load, weight `trend`, each
