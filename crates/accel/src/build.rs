@@ -22,7 +22,7 @@ pub enum BvhError {
     #[error("{0} triangles are more than the BVH holds (2^27)")]
     TooManyTriangles(usize),
     #[error(
-        "the BVH is too deep: its {layout} traversal could hold {needed} pending children, more than its stack ({capacity})"
+        "the BVH is too deep: its {layout} traversal could need {needed} stack entries, more than it has ({capacity})"
     )]
     TooDeep {
         layout: &'static str,
@@ -51,8 +51,21 @@ fn build_bvh2(tris: &[TriangleVerts]) -> Bvh2 {
     obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut Default::default())
 }
 
-/// The wide tree being laid out: its nodes and leaf blocks, and the triangles and input
-/// indices in leaf order that the blocks are cut from.
+/// A wide layout being written: its nodes, and how a lane and a leaf child are written.
+/// `W` is its width.
+trait Layout<const W: usize> {
+    type Node: Copy;
+    /// A node with every lane unused.
+    const EMPTY: Self::Node;
+    fn nodes(&mut self) -> &mut Vec<Self::Node>;
+    /// Sets lane `lane` of `node` to `child` with the box [`min`, `max`].
+    fn set_lane(node: &mut Self::Node, lane: usize, min: [f32; 3], max: [f32; 3], child: u32);
+    /// The child entry of the leaf of the `count` triangles from leaf-order position `first`.
+    fn leaf(&mut self, first: u32, count: u32) -> u32;
+}
+
+/// The CPU's 8-wide tree being laid out: its nodes and leaf blocks, and the triangles and
+/// input indices in leaf order that the blocks are cut from.
 struct WideOut<'a> {
     nodes: Vec<WideNode>,
     leaves: Vec<Tri4>,
@@ -60,14 +73,47 @@ struct WideOut<'a> {
     ids: &'a [u32],
 }
 
-impl WideOut<'_> {
-    /// Appends the block of the `count` triangles from leaf-order position `first`; returns
-    /// its child reference.
+impl Layout<WIDTH> for WideOut<'_> {
+    type Node = WideNode;
+    const EMPTY: WideNode = WideNode::EMPTY;
+
+    fn nodes(&mut self) -> &mut Vec<WideNode> {
+        &mut self.nodes
+    }
+
+    fn set_lane(node: &mut WideNode, lane: usize, min: [f32; 3], max: [f32; 3], child: u32) {
+        node.set_box(lane, min, max);
+        node.child[lane] = child;
+    }
+
+    /// Appends the block of the leaf's triangles; the entry is its index.
     fn leaf(&mut self, first: u32, count: u32) -> u32 {
         let range = first as usize..(first + count) as usize;
         self.leaves
             .push(Tri4::new(&self.leaf_tris[range.clone()], &self.ids[range]));
         LEAF | (self.leaves.len() - 1) as u32
+    }
+}
+
+/// The GPU's 4-wide tree being laid out; its leaves are triangle ranges in leaf order.
+struct GpuOut {
+    nodes: Vec<GpuNode>,
+}
+
+impl Layout<GPU_WIDTH> for GpuOut {
+    type Node = GpuNode;
+    const EMPTY: GpuNode = GpuNode::EMPTY;
+
+    fn nodes(&mut self) -> &mut Vec<GpuNode> {
+        &mut self.nodes
+    }
+
+    fn set_lane(node: &mut GpuNode, lane: usize, min: [f32; 3], max: [f32; 3], child: u32) {
+        node.set(lane, min, max, child);
+    }
+
+    fn leaf(&mut self, first: u32, count: u32) -> u32 {
+        GpuNode::leaf(first, count)
     }
 }
 
@@ -153,72 +199,65 @@ impl<const W: usize> Collapse<W> {
     }
 }
 
-/// Appends the wide node covering binary inner node `i` with the children `collapse`
-/// chose; returns its index. `depth` counts the levels below it.
-fn emit_wide(
+/// Appends the wide node covering binary inner node `i` with the children `collapse` chose,
+/// its subtree after it; returns its index. `pending` is the most children a traversal can
+/// leave on its stack below the root: per node on a path down, all its children but the one
+/// entered.
+fn emit<const W: usize, L: Layout<W>>(
     bvh2: &Bvh2,
-    collapse: &Collapse<WIDTH>,
+    collapse: &Collapse<W>,
     i: usize,
-    out: &mut WideOut,
-    depth: &mut usize,
-) -> u32 {
-    let slot = out.nodes.len();
-    out.nodes.push(WideNode::EMPTY);
-    let mut node = WideNode::EMPTY;
-    let mut below = 0;
-    for (lane, &k) in collapse.wide_children(bvh2, i).iter().enumerate() {
-        let n = &bvh2.nodes[k];
-        node.set_box(lane, n.aabb.min.into(), n.aabb.max.into());
-        node.child[lane] = if n.prim_count > 0 {
-            out.leaf(n.first_index, n.prim_count)
-        } else {
-            let mut d = 0;
-            let c = emit_wide(bvh2, collapse, k, out, &mut d);
-            below = below.max(d);
-            c
-        };
-    }
-    *depth = 1 + below;
-    out.nodes[slot] = node;
-    slot as u32
-}
-
-/// Appends the GPU node covering binary inner node `i` with the children `collapse` chose,
-/// its subtree after it; returns its index. `pending` is the most children its traversal
-/// can leave on the stack: per node on a path down, all its children but the one entered.
-fn emit_gpu(
-    bvh2: &Bvh2,
-    collapse: &Collapse<GPU_WIDTH>,
-    i: usize,
-    nodes: &mut Vec<GpuNode>,
+    out: &mut L,
     pending: &mut usize,
 ) -> u32 {
-    let slot = nodes.len();
-    nodes.push(GpuNode::default());
-    let mut node = GpuNode::default();
+    let slot = out.nodes().len();
+    out.nodes().push(L::EMPTY);
+    let mut node = L::EMPTY;
     let kids = collapse.wide_children(bvh2, i);
     let mut below = 0;
     for (lane, &k) in kids.iter().enumerate() {
         let n = &bvh2.nodes[k];
         let child = if n.prim_count > 0 {
-            GpuNode::leaf(n.first_index, n.prim_count)
+            out.leaf(n.first_index, n.prim_count)
         } else {
             let mut p = 0;
-            let c = emit_gpu(bvh2, collapse, k, nodes, &mut p);
+            let c = emit(bvh2, collapse, k, out, &mut p);
             below = below.max(p);
             c
         };
-        node.set(lane, n.aabb.min.into(), n.aabb.max.into(), child);
+        L::set_lane(&mut node, lane, n.aabb.min.into(), n.aabb.max.into(), child);
     }
     *pending = kids.len() - 1 + below;
-    nodes[slot] = node;
+    out.nodes()[slot] = node;
     slot as u32
+}
+
+/// Lays out the tree `bvh2` as layout `out`; returns the most children its traversal can
+/// leave pending. A root that is a leaf becomes one node with that leaf in its first lane.
+fn lay_out<const W: usize, L: Layout<W>>(bvh2: &Bvh2, out: &mut L) -> usize {
+    let root = &bvh2.nodes[0];
+    if root.prim_count == 0 {
+        let mut pending = 0;
+        emit(bvh2, &Collapse::new(bvh2), 0, out, &mut pending);
+        return pending;
+    }
+    let mut node = L::EMPTY;
+    let leaf = out.leaf(root.first_index, root.prim_count);
+    L::set_lane(
+        &mut node,
+        0,
+        root.aabb.min.into(),
+        root.aabb.max.into(),
+        leaf,
+    );
+    out.nodes().push(node);
+    0
 }
 
 /// The two layouts of a tree.
 pub(crate) struct Layouts {
     pub gpu: Vec<GpuNode>,
-    /// The most children the GPU traversal can leave on its stack (see [`emit_gpu`]).
+    /// The most children the GPU traversal can leave on its stack (see [`emit`]).
     pub gpu_pending: usize,
     pub wide: Wide,
 }
@@ -247,42 +286,20 @@ pub(crate) fn build(tris: &[TriangleVerts]) -> Result<Layouts, BvhError> {
         leaf_tris: &leaf_tris,
         ids: &ids,
     };
-    let root = &bvh2.nodes[0];
-    let mut gpu_pending = 0;
-    let gpu = if root.prim_count > 0 {
-        // A single leaf: one node of each layout, its first lane that leaf.
-        let (min, max) = (root.aabb.min.into(), root.aabb.max.into());
-        let mut node = WideNode::EMPTY;
-        node.set_box(0, min, max);
-        node.child[0] = out.leaf(root.first_index, root.prim_count);
-        out.nodes.push(node);
-        let mut gpu = GpuNode::default();
-        gpu.set(
-            0,
-            min,
-            max,
-            GpuNode::leaf(root.first_index, root.prim_count),
-        );
-        vec![gpu]
-    } else {
-        let mut wide_depth = 0;
-        emit_wide(&bvh2, &Collapse::new(&bvh2), 0, &mut out, &mut wide_depth);
-        // Each wide level pushes at most WIDTH - 1 entries.
-        let needed = (WIDTH - 1) * wide_depth + 1;
-        if needed > STACK_SIZE {
-            return Err(BvhError::TooDeep {
-                layout: "CPU",
-                needed,
-                capacity: STACK_SIZE,
-            });
-        }
-        let mut gpu = Vec::new();
-        emit_gpu(&bvh2, &Collapse::new(&bvh2), 0, &mut gpu, &mut gpu_pending);
-        gpu
-    };
+    // The CPU's traversal pushes every child it will visit and pops the one it enters.
+    let needed = lay_out(&bvh2, &mut out) + 1;
+    if needed > STACK_SIZE {
+        return Err(BvhError::TooDeep {
+            layout: "CPU",
+            needed,
+            capacity: STACK_SIZE,
+        });
+    }
+    let mut gpu = GpuOut { nodes: Vec::new() };
+    let gpu_pending = lay_out(&bvh2, &mut gpu);
     let (nodes, leaves) = (out.nodes, out.leaves);
     Ok(Layouts {
-        gpu,
+        gpu: gpu.nodes,
         gpu_pending,
         wide: Wide { nodes, leaves, ids },
     })

@@ -16,7 +16,8 @@ pub const GPU_WIDTH: usize = 4;
 pub const GPU_LEAF: u32 = 1 << 31;
 /// The [`GpuNode::child`] entry of an unused lane: node 0 is the root, nobody's child.
 pub const GPU_EMPTY: u32 = 0;
-/// Entries of the GPU traversal's stack: a build whose tree could push more is refused.
+/// Entries of the GPU traversal's stack: [`crate::Bvh::gpu_nodes`] refuses a tree whose
+/// traversal could leave more children pending.
 pub const GPU_STACK_SIZE: usize = 64;
 
 /// A node of the GPU's 4-wide tree: per lane a child's box (`min_x[lane]` ...) and the
@@ -38,6 +39,18 @@ pub struct GpuNode {
 }
 
 impl GpuNode {
+    /// A node whose four lanes are all unused.
+    pub(crate) const EMPTY: GpuNode = GpuNode {
+        min_x: [0.0; GPU_WIDTH],
+        min_y: [0.0; GPU_WIDTH],
+        min_z: [0.0; GPU_WIDTH],
+        max_x: [0.0; GPU_WIDTH],
+        max_y: [0.0; GPU_WIDTH],
+        max_z: [0.0; GPU_WIDTH],
+        child: [GPU_EMPTY; GPU_WIDTH],
+        pad: [0; GPU_WIDTH],
+    };
+
     /// Sets lane `lane` to `child` with the box [`min`, `max`].
     pub(crate) fn set(&mut self, lane: usize, min: [f32; 3], max: [f32; 3], child: u32) {
         (self.min_x[lane], self.min_y[lane], self.min_z[lane]) = (min[0], min[1], min[2]);

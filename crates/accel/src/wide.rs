@@ -33,7 +33,7 @@ pub(crate) struct WideNode {
 }
 
 impl WideNode {
-    /// A node whose four lanes are all empty.
+    /// A node whose eight lanes are all empty.
     pub const EMPTY: WideNode = WideNode {
         bounds: [
             [f32::INFINITY; WIDTH],
