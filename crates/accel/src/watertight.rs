@@ -31,11 +31,14 @@ impl WatertightRay {
         let kz = dir.abs().max_position();
         let mut kx = (kz + 1) % 3;
         let mut ky = (kx + 1) % 3;
-        if dir[kz] < 0.0 {
+        // Components picked from an array by index: loads, where indexing the vector
+        // compiles to branches on the axes, which bounce rays mispredict.
+        let d = dir.to_array();
+        if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
         // The three divisions in one vector instruction.
-        let [sx, sy, sz] = (Vec3A::new(dir[kx], dir[ky], 1.0) / dir[kz]).to_array();
+        let [sx, sy, sz] = (Vec3A::new(d[kx], d[ky], 1.0) / d[kz]).to_array();
         Self {
             origin: origin.to_array(),
             kx,
