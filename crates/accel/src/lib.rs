@@ -8,7 +8,7 @@
 //!   uploads and traverses in WGSL (`crates/render-gpu/src/shaders/traversal.wgsl`);
 //! - an 8-wide tree with structure-of-arrays child boxes and leaves of four triangles in
 //!   structure-of-arrays lanes, which [`Bvh::closest`] and [`Bvh::any_hit`] traverse on the
-//!   CPU (with AVX2 where the CPU has it).
+//!   CPU (with AVX2, or AVX-512, where the CPU has it).
 //!
 //! Triangles are intersected with the watertight test of Woop, Benthin and Wald
 //! ([`WatertightRay`]); box tests are widened by a few ulps so that the BVH finds exactly
