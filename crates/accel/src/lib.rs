@@ -29,6 +29,14 @@ pub use watertight::{T_MIN, TriangleVerts, WatertightRay};
 use glam::{Vec3, Vec3A};
 use wide::Wide;
 
+/// Which compiled form of the CPU traversal ([`Bvh::closest`], [`Bvh::any_hit`]) this CPU
+/// runs: "avx512" (the AVX2 code compiled for AVX-512's 32 vector registers), "avx2", or
+/// "portable" lane loops. All find the same hits; they differ in speed, which is why
+/// throughput reports name it.
+pub fn cpu_traversal_simd() -> &'static str {
+    wide::simd_name()
+}
+
 /// A BVH over a list of triangles (the "input order"), in two layouts over one leaf order.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {

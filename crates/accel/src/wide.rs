@@ -85,6 +85,18 @@ fn x86_level() -> X86Level {
     }
 }
 
+/// The name of the traversal's compiled form this CPU runs: "avx512", "avx2" or
+/// "portable".
+pub(crate) fn simd_name() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    match x86_level() {
+        X86Level::Avx512 => return "avx512",
+        X86Level::Avx2 => return "avx2",
+        X86Level::Baseline => {}
+    }
+    "portable"
+}
+
 /// The wide tree, its leaves' triangle blocks, and the input indices in leaf order.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Wide {

@@ -1,5 +1,6 @@
 //! `steadyray raybench` on both backends: the GPU run prints one JSON line with the same
-//! fields as the CPU run (device and timing in place of threads) and the same hit fractions
+//! fields as the CPU run (device and timing in place of threads and the traversal's SIMD
+//! form) and the same hit fractions
 //! (the same rays, traced to the same hits). Without a GPU adapter the GPU test skips
 //! loudly, unless `STEADYRAY_REQUIRE_GPU=1`, which makes it fail; a GPU asked for but not
 //! found is a clear error, never a panic.
@@ -66,6 +67,7 @@ fn gpu_hit_fractions_equal_the_cpu_run() {
     assert_eq!(c["backend"], "cpu");
     assert!(g["device"].as_str().is_some_and(|d| !d.is_empty()), "{g}");
     assert!(g.get("threads").is_none(), "{g}");
+    assert!(g.get("simd").is_none(), "{g}");
     assert!(
         matches!(g["timing"].as_str(), Some("timestamps" | "wall")),
         "{g}"
@@ -89,6 +91,29 @@ fn gpu_hit_fractions_equal_the_cpu_run() {
         assert!(g[key].as_f64().is_some_and(|r| r > 0.0), "{key}: {g}");
     }
     let hits = g["primary_hit_fraction"].as_f64().unwrap();
+    assert!((0.15..0.6).contains(&hits), "primary hit fraction {hits}");
+}
+
+/// A CPU run reports its threads and which compiled form of the traversal ran, and no
+/// GPU device.
+#[test]
+fn the_cpu_run_names_its_threads_and_traversal() {
+    let cpu = raybench("cpu", None);
+    assert!(
+        cpu.status.success(),
+        "cpu raybench failed: {}",
+        String::from_utf8_lossy(&cpu.stderr)
+    );
+    let c = report(&cpu);
+    assert_eq!(c["backend"], "cpu");
+    assert!(c["threads"].as_u64().is_some_and(|t| t >= 1), "{c}");
+    assert!(
+        matches!(c["simd"].as_str(), Some("avx512" | "avx2" | "portable")),
+        "{c}"
+    );
+    assert!(c.get("device").is_none(), "{c}");
+    assert_eq!(c["primary_rays"], 32 * 18);
+    let hits = c["primary_hit_fraction"].as_f64().unwrap();
     assert!((0.15..0.6).contains(&hits), "primary hit fraction {hits}");
 }
 

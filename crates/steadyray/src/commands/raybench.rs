@@ -5,7 +5,8 @@
 //! traces the same rays). Both sets are traced `--reps` times for their closest hit; the
 //! command prints one JSON line with the triangle count, load and build times, the median
 //! rays per second of each set (the BVH build excluded), the hit fractions, the thread
-//! count (CPU) or the device (GPU), how the time was taken and the camera.
+//! count and the traversal's SIMD form (CPU) or the device (GPU), how the time was taken
+//! and the camera.
 //!
 //! On the GPU (`--backend gpu`, [`GpuRayCaster`]) the mesh is uploaded once, primary rays
 //! are generated in the kernel, bounce rays are made on the host from the primary hits and
@@ -165,6 +166,10 @@ struct Report {
     /// Worker threads (CPU backend only).
     #[serde(skip_serializing_if = "Option::is_none")]
     threads: Option<usize>,
+    /// The compiled form of the CPU traversal that ran: avx512, avx2 or portable (CPU
+    /// backend only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    simd: Option<&'static str>,
     /// The GPU adapter and driver (GPU backend only).
     #[serde(skip_serializing_if = "Option::is_none")]
     device: Option<String>,
@@ -333,9 +338,14 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
     };
     let timestamps =
         !timings.is_empty() && timings.iter().all(|&t| t == TimingSource::GpuTimestamps);
-    let (backend, threads, device) = match &tracer {
-        Tracer::Cpu => ("cpu", Some(pool.current_num_threads()), None),
-        Tracer::Gpu(caster) => ("gpu", None, Some(caster.device_description())),
+    let (backend, threads, simd, device) = match &tracer {
+        Tracer::Cpu => (
+            "cpu",
+            Some(pool.current_num_threads()),
+            Some(steadyray_accel::cpu_traversal_simd()),
+            None,
+        ),
+        Tracer::Gpu(caster) => ("gpu", None, None, Some(caster.device_description())),
     };
     let report = Report {
         mesh: args.mesh.display().to_string(),
@@ -349,6 +359,7 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
         height: h,
         reps: args.reps,
         threads,
+        simd,
         device,
         timing: if timestamps { "timestamps" } else { "wall" },
         primary_rays: primary.len(),
