@@ -39,4 +39,9 @@ impl Scene {
     pub fn camera_at(&self, k: u32, n: u32) -> Camera {
         self.path.camera(&self.camera, k, n)
     }
+
+    /// The camera at scene time `t_s` seconds along the scene's path.
+    pub fn camera_at_time(&self, t_s: f64) -> Camera {
+        self.path.camera_at_time(&self.camera, t_s)
+    }
 }

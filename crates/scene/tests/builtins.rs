@@ -250,3 +250,27 @@ fn cornell_and_spheres_have_what_they_promise() {
     assert!(s.lights.len() >= 3);
     assert!(matches!(s.path, CameraPath::Orbit { .. }));
 }
+
+#[test]
+fn paths_are_functions_of_time() {
+    for name in builtin_names() {
+        let s = builtin(name).unwrap();
+        let n = s.path.frames();
+        assert!(
+            (s.path.duration_s() - n as f64 / 60.0).abs() < 1e-12,
+            "{name}"
+        );
+        for k in [0, 1, n / 3, n - 1] {
+            let t = s.path.frame_time(k, n);
+            let (a, b) = (s.camera_at(k, n), s.camera_at_time(t));
+            assert!((a.eye - b.eye).length() < 1e-5, "{name} frame {k}");
+            assert!((a.forward - b.forward).length() < 1e-5, "{name} frame {k}");
+        }
+        // The path repeats after its duration.
+        let (a, b) = (
+            s.camera_at_time(0.25),
+            s.camera_at_time(0.25 + s.path.duration_s()),
+        );
+        assert!((a.forward - b.forward).length() < 1e-5, "{name}");
+    }
+}
