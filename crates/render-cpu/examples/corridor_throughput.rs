@@ -23,9 +23,9 @@ fn main() {
     let set = common::settings(640, 360, 4.0, 8);
     for (label, yaw) in [("yaw 0", 0.0), ("yaw pi/2", PI / 2.0), ("yaw pi", PI)] {
         let camera = Camera::yaw_pitch(scene.camera.eye, yaw, 0.0, 60.0);
-        r.render(&camera, &set).expect("renders"); // warm-up
+        r.render(&camera, 0.0, &set).expect("renders"); // warm-up
         let runs: Vec<_> = (0..3)
-            .map(|_| r.render(&camera, &set).expect("renders"))
+            .map(|_| r.render(&camera, 0.0, &set).expect("renders"))
             .collect();
         let best = runs
             .iter()

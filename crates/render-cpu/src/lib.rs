@@ -25,7 +25,7 @@ use integrator::{SampleId, trace};
 use std::time::Instant;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, MAX_DEPTH, RenderError, RenderSettings, Renderer,
-    SettingsError, TimingSource,
+    SettingsError, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 use world::World;
@@ -119,9 +119,11 @@ impl Renderer for CpuRenderer {
     fn render(
         &mut self,
         camera: &Camera,
+        time_s: f64,
         settings: &RenderSettings,
     ) -> Result<FrameStats, RenderError> {
         settings.validate()?;
+        check_time(time_s)?;
         let world = self.world.as_ref().ok_or(RenderError::NoScene)?;
         let (width, height) = (settings.width, settings.height);
         let image = match &mut self.image {

@@ -14,13 +14,13 @@ fn the_same_frame_twice_is_bit_identical_on_any_thread_count() {
     let set = settings(48, 27, 2.5, 6);
     let mut two = CpuRenderer::with_threads(2);
     two.load_scene(&s).unwrap();
-    let a = two.render(&s.camera, &set).unwrap();
+    let a = two.render(&s.camera, 0.0, &set).unwrap();
     let img_a = two.read_image().unwrap();
-    let b = two.render(&s.camera, &set).unwrap();
+    let b = two.render(&s.camera, 0.0, &set).unwrap();
     let img_b = two.read_image().unwrap();
     let mut one = CpuRenderer::with_threads(1);
     one.load_scene(&s).unwrap();
-    let c = one.render(&s.camera, &set).unwrap();
+    let c = one.render(&s.camera, 0.0, &set).unwrap();
     let img_c = one.read_image().unwrap();
     let bits = |img: &steadyray_render::Image| -> Vec<u32> {
         img.pixels.iter().flatten().map(|c| c.to_bits()).collect()
@@ -36,7 +36,7 @@ fn the_same_frame_twice_is_bit_identical_on_any_thread_count() {
 fn corridor_counts_are_consistent() {
     let s = corridor();
     let mut r = loaded(&s);
-    let stats = r.render(&s.camera, &settings(64, 36, 1.0, 8)).unwrap();
+    let stats = r.render(&s.camera, 0.0, &settings(64, 36, 1.0, 8)).unwrap();
     let d = &stats.rays.per_depth;
     assert_eq!(d.len(), 9);
     assert_eq!(d[0], 64 * 36);
@@ -61,7 +61,7 @@ fn fractional_spp_takes_the_dithered_sample_counts() {
     let mut r = loaded(&s);
     for spp in [1.0f32, 1.5, 2.25, 3.9] {
         let (w, h) = (20, 13);
-        let stats = r.render(&s.camera, &settings(w, h, spp, 2)).unwrap();
+        let stats = r.render(&s.camera, 0.0, &settings(w, h, spp, 2)).unwrap();
         let want: u64 = (0..h)
             .flat_map(|y| (0..w).map(move |x| samples_for_pixel(x, y, spp) as u64))
             .sum();
@@ -69,7 +69,7 @@ fn fractional_spp_takes_the_dithered_sample_counts() {
         assert_eq!(stats.rays.per_depth[0], want);
     }
     // 16×16 = four whole Bayer blocks: exactly S per pixel on average
-    let stats = r.render(&s.camera, &settings(16, 16, 1.5, 2)).unwrap();
+    let stats = r.render(&s.camera, 0.0, &settings(16, 16, 1.5, 2)).unwrap();
     assert_eq!(stats.samples, 384);
 }
 
@@ -78,12 +78,12 @@ fn the_image_follows_the_frame_size() {
     let s = corridor();
     let mut r = loaded(&s);
     assert!(matches!(r.read_image(), Err(RenderError::NoFrame)));
-    r.render(&s.camera, &settings(8, 8, 1.0, 1)).unwrap();
+    r.render(&s.camera, 0.0, &settings(8, 8, 1.0, 1)).unwrap();
     let big = r.read_image().unwrap();
-    r.render(&s.camera, &settings(5, 3, 1.0, 1)).unwrap();
+    r.render(&s.camera, 0.0, &settings(5, 3, 1.0, 1)).unwrap();
     let small = r.read_image().unwrap();
     assert_eq!((small.width, small.height, small.pixels.len()), (5, 3, 15));
-    r.render(&s.camera, &settings(8, 8, 1.0, 1)).unwrap();
+    r.render(&s.camera, 0.0, &settings(8, 8, 1.0, 1)).unwrap();
     assert_eq!(r.read_image().unwrap(), big);
 }
 
@@ -102,14 +102,22 @@ fn bad_settings_are_errors_not_panics() {
     ];
     for set in cases {
         assert!(
-            matches!(r.render(&s.camera, &set), Err(RenderError::Settings(_))),
+            matches!(
+                r.render(&s.camera, 0.0, &set),
+                Err(RenderError::Settings(_))
+            ),
             "{set:?}"
         );
     }
     assert!(matches!(
-        r.render(&s.camera, &settings(0, 1, 1.0, 1)),
+        r.render(&s.camera, 0.0, &settings(0, 1, 1.0, 1)),
         Err(RenderError::Settings(SettingsError::EmptyImage { .. }))
     ));
+    for t in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let e = r.render(&s.camera, t, &settings(4, 4, 1.0, 1)).unwrap_err();
+        assert!(matches!(e, RenderError::BadTime(_)), "{e}");
+        assert!(e.to_string().contains("not a finite number"), "{e}");
+    }
     assert!(matches!(
         r.trace_ray(Vec3::ZERO, Vec3::NEG_Z, (0, 0), 0, 65),
         Err(RenderError::Settings(SettingsError::BadDepth(65)))
@@ -126,7 +134,7 @@ fn rendering_before_loading_a_scene_is_no_scene() {
         max_depth: 1,
     };
     assert!(matches!(
-        r.render(&looking_down_neg_z(), &set),
+        r.render(&looking_down_neg_z(), 0.0, &set),
         Err(RenderError::NoScene)
     ));
     assert!(matches!(
@@ -136,7 +144,7 @@ fn rendering_before_loading_a_scene_is_no_scene() {
     // settings are checked first
     let bad = RenderSettings { width: 0, ..set };
     assert!(matches!(
-        r.render(&looking_down_neg_z(), &bad),
+        r.render(&looking_down_neg_z(), 0.0, &bad),
         Err(RenderError::Settings(_))
     ));
 }

@@ -41,7 +41,7 @@ fn a_mirror_shows_the_sphere_behind_the_camera_where_geometry_predicts() {
     let s = mirror_and_sphere_behind();
     let (w, h) = (32, 32);
     let mut r = loaded(&s);
-    let stats = r.render(&s.camera, &settings(w, h, 1.0, 1)).unwrap();
+    let stats = r.render(&s.camera, 0.0, &settings(w, h, 1.0, 1)).unwrap();
     let img = r.read_image().unwrap();
     let refl = v([0.9, 0.8, 0.7]);
     let frame = s.camera.frame(w, h);
@@ -79,7 +79,7 @@ fn at_r_zero_mirrors_are_shaded_locally() {
     let mut s = mirror_and_sphere_behind();
     s.lights.push(light(v([0.0, 0.0, -1.0]), 1.0));
     let mut r = loaded(&s);
-    let stats = r.render(&s.camera, &settings(1, 1, 1.0, 0)).unwrap();
+    let stats = r.render(&s.camera, 0.0, &settings(1, 1, 1.0, 0)).unwrap();
     let img = r.read_image().unwrap();
     // local at (0, 0, -2): reflectance · (0.1 + 1 · 1 / 1²)
     assert_close(
@@ -118,7 +118,9 @@ fn each_extra_depth_adds_exactly_one_reflection_between_facing_mirrors() {
     let (w, h, spp) = (8, 6, 2.0);
     let mut r = loaded(&s);
     for depth in 0..=8 {
-        let stats = r.render(&s.camera, &settings(w, h, spp, depth)).unwrap();
+        let stats = r
+            .render(&s.camera, 0.0, &settings(w, h, spp, depth))
+            .unwrap();
         // Every ray bounces: each depth 0..=R traces exactly pixels · S rays.
         assert_eq!(
             stats.rays.per_depth,
@@ -141,7 +143,9 @@ fn shadow_rays_are_traced_once_per_sample_at_the_last_depth_only() {
     let s = facing_mirrors(Vec3::splat(0.9), true);
     let mut r = loaded(&s);
     for depth in [0, 1, 5] {
-        let stats = r.render(&s.camera, &settings(8, 6, 2.0, depth)).unwrap();
+        let stats = r
+            .render(&s.camera, 0.0, &settings(8, 6, 2.0, depth))
+            .unwrap();
         assert_eq!(stats.rays.per_depth, vec![96; depth as usize + 1]);
         // The light between the mirrors is always on the facing side.
         assert_eq!(stats.rays.shadow, 96);

@@ -79,7 +79,7 @@ fn diffuse_plane_matches_the_formula_at_every_pixel_and_counts_shadow_rays() {
     );
     let (w, h) = (9, 7);
     let mut r = loaded(&s);
-    let stats = r.render(&s.camera, &settings(w, h, 1.0, 3)).unwrap();
+    let stats = r.render(&s.camera, 0.0, &settings(w, h, 1.0, 3)).unwrap();
     let img = r.read_image().unwrap();
     assert_eq!(stats.rays.per_depth, vec![63, 0, 0, 0]);
     assert_eq!(

@@ -27,10 +27,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("{} ({:?})", gpu.info().device, settings);
     let scene = steadyray_scene::builtin("corridor")?;
     gpu.load_scene(&scene)?;
-    gpu.render(&scene.camera, &settings)?;
+    gpu.render(&scene.camera, 0.0, &settings)?;
     let (mut rays, mut ms, mut wall) = (0u64, 0.0, 0.0);
     for k in 0..frames {
-        let stats = gpu.render(&scene.camera_at(k, frames), &settings)?;
+        let t = scene.path.frame_time(k, frames);
+        let stats = gpu.render(&scene.camera_at(k, frames), t, &settings)?;
         println!(
             "frame {k:3}: {:9.3} ms ({:?}), wall {:9.3} ms, {:10} rays, {:8.3} Mrays/s",
             stats.render_ms,

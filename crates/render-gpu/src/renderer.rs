@@ -11,6 +11,7 @@ use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
 use std::time::Instant;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, RayCounts, RenderError, RenderSettings, Renderer, TimingSource,
+    check_time,
 };
 use steadyray_scene::{Camera, Scene};
 
@@ -247,9 +248,11 @@ impl Renderer for GpuRenderer {
     fn render(
         &mut self,
         camera: &Camera,
+        time_s: f64,
         settings: &RenderSettings,
     ) -> Result<FrameStats, RenderError> {
         settings.validate()?;
+        check_time(time_s)?;
         let scene = self.scene.as_ref().ok_or(RenderError::NoScene)?;
         self.ctx.errors.check()?;
         let wall_start = Instant::now();
@@ -449,7 +452,7 @@ pub(crate) mod tests {
             spp: 1.0,
             max_depth: 0,
         };
-        renderer.render(&scene.camera, &settings).unwrap();
+        renderer.render(&scene.camera, 0.0, &settings).unwrap();
         let counts: Vec<u32> = (0..64u32)
             .flat_map(|g| [u32::MAX - g, 3_000_000_000 + g, g % 3])
             .collect();

@@ -21,11 +21,11 @@ fn needs_a_scene_then_a_frame() {
     assert!(matches!(gpu.read_image(), Err(RenderError::NoFrame)));
     assert!(matches!(gpu.read_srgb8(), Err(RenderError::NoFrame)));
     assert!(matches!(
-        gpu.render(&scene.camera, &s),
+        gpu.render(&scene.camera, 0.0, &s),
         Err(RenderError::NoScene)
     ));
     gpu.load_scene(&scene).unwrap();
-    gpu.render(&scene.camera, &s).unwrap();
+    gpu.render(&scene.camera, 0.0, &s).unwrap();
     // Loading another scene keeps the last frame readable.
     gpu.load_scene(&builtin("spheres").unwrap()).unwrap();
     let image = gpu.read_image().unwrap();

@@ -30,8 +30,8 @@ fn check_parity(name: &str, scene: &Scene, camera: &Camera, size: (u32, u32), sr
             spp,
             max_depth,
         };
-        let g = gpu.render(camera, &settings).unwrap();
-        let c = cpu.render(camera, &settings).unwrap();
+        let g = gpu.render(camera, 0.0, &settings).unwrap();
+        let c = cpu.render(camera, 0.0, &settings).unwrap();
         let diff = compare(&gpu.read_image().unwrap(), &cpu.read_image().unwrap());
         eprintln!(
             "{name} {}x{} S={spp} R={max_depth}: max {} mean {:.4} over2 {} ({:.3}%) \

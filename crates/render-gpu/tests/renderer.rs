@@ -37,8 +37,8 @@ fn resizes_quality_changes_and_new_scenes_reuse_the_renderer() {
         gpu.load_scene(&scene).unwrap();
         cpu.load_scene(&scene).unwrap();
         let camera = scene.camera_at(1, 16);
-        let g = gpu.render(&camera, &s).unwrap();
-        let c = cpu.render(&camera, &s).unwrap();
+        let g = gpu.render(&camera, 0.0, &s).unwrap();
+        let c = cpu.render(&camera, 0.0, &s).unwrap();
         let what = format!("{name} {s:?}");
         let exact = gpu.adapter().is_software;
         assert_counts(&g.rays, &c.rays, exact, scene.lights.len(), &what);
@@ -56,7 +56,7 @@ fn gpu_tone_map_matches_the_host_tone_map() {
     };
     let scene = builtin("corridor").unwrap();
     gpu.load_scene(&scene).unwrap();
-    gpu.render(&scene.camera, &settings(77, 45, 2.0, 4))
+    gpu.render(&scene.camera, 0.0, &settings(77, 45, 2.0, 4))
         .unwrap();
     let on_gpu = gpu.read_srgb8().unwrap();
     let on_host = gpu.read_image().unwrap().to_srgb8_rgba();
@@ -85,7 +85,7 @@ fn frame_time_comes_from_timestamps_when_the_device_has_them() {
     let scene = builtin("corridor").unwrap();
     gpu.load_scene(&scene).unwrap();
     let stats = gpu
-        .render(&scene.camera, &settings(64, 32, 1.0, 2))
+        .render(&scene.camera, 0.0, &settings(64, 32, 1.0, 2))
         .unwrap();
     let expected = if gpu.has_timestamps() {
         TimingSource::GpuTimestamps
@@ -110,13 +110,17 @@ fn bad_settings_and_scenes_are_errors() {
     let mut scene = builtin("corridor").unwrap();
     gpu.load_scene(&scene).unwrap();
     let err = gpu
-        .render(&scene.camera, &settings(16, 16, 0.5, 1))
+        .render(&scene.camera, 0.0, &settings(16, 16, 0.5, 1))
         .unwrap_err();
     assert!(matches!(err, RenderError::Settings(_)), "{err}");
     let err = gpu
-        .render(&scene.camera, &settings(16, 16, 1.0, 65))
+        .render(&scene.camera, 0.0, &settings(16, 16, 1.0, 65))
         .unwrap_err();
     assert!(matches!(err, RenderError::Settings(_)), "{err}");
+    let err = gpu
+        .render(&scene.camera, f64::NAN, &settings(16, 16, 1.0, 1))
+        .unwrap_err();
+    assert!(matches!(err, RenderError::BadTime(_)), "{err}");
 
     scene.objects[0].material = 99;
     let err = gpu.load_scene(&scene).unwrap_err();

@@ -11,6 +11,6 @@ pub mod stats;
 pub mod tonemap;
 
 pub use image::Image;
-pub use renderer::{BackendInfo, RenderError, Renderer};
+pub use renderer::{BackendInfo, RenderError, Renderer, check_time};
 pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError};
 pub use stats::{FrameStats, RayCounts, TimingSource};

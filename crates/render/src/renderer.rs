@@ -18,6 +18,8 @@ pub struct BackendInfo {
 pub enum RenderError {
     #[error(transparent)]
     Settings(#[from] SettingsError),
+    #[error("scene time {0} s is not a finite number")]
+    BadTime(f64),
     #[error("no scene loaded: call load_scene first")]
     NoScene,
     #[error("no frame rendered yet: render before reading the image")]
@@ -28,6 +30,15 @@ pub enum RenderError {
     Gpu(String),
 }
 
+/// Checks a scene time given to [`Renderer::render`]: any finite number of seconds.
+pub fn check_time(time_s: f64) -> Result<(), RenderError> {
+    if time_s.is_finite() {
+        Ok(())
+    } else {
+        Err(RenderError::BadTime(time_s))
+    }
+}
+
 /// A ray tracer backend. A scene is loaded once; frames are then rendered from any camera
 /// at any quality, and the image of the last frame is read back only when asked for, so
 /// timed loops never pay for readback.
@@ -36,10 +47,14 @@ pub trait Renderer {
     fn info(&self) -> BackendInfo;
     /// Prepares `scene` (acceleration structures, GPU buffers); replaces any earlier scene.
     fn load_scene(&mut self, scene: &Scene) -> Result<(), RenderError>;
-    /// Renders one frame and reports its time and exact ray counts.
+    /// Renders one frame of the scene as it is at scene time `time_s` (seconds: where its
+    /// moving objects are and which exist then) seen by `camera`, and reports its time and
+    /// exact ray counts. Camera paths are separate: callers take the camera at the same
+    /// time from the scene's path (`Scene::camera_at_time`) or from anywhere else.
     fn render(
         &mut self,
         camera: &Camera,
+        time_s: f64,
         settings: &RenderSettings,
     ) -> Result<FrameStats, RenderError>;
     /// The linear image of the last rendered frame.

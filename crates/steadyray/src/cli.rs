@@ -118,6 +118,10 @@ pub struct RenderArgs {
     /// Frames in the camera path (default: the path's own count).
     #[arg(long, requires = "frame")]
     pub frames: Option<u32>,
+    /// Scene time in seconds: moving objects where they are then, and (without --yaw) the
+    /// camera where the scene's path has it then. Default 0, or frame k's time with --frame.
+    #[arg(long, value_name = "SECONDS", conflicts_with = "frame")]
+    pub time: Option<f64>,
     /// Print one JSON line with the frame's time and ray counts.
     #[arg(long)]
     pub stats: bool,

@@ -96,7 +96,7 @@ pub fn loaded(scene: &Scene) -> CpuRenderer {
 /// Renders `scene` from its camera and returns the image.
 pub fn render(scene: &Scene, s: RenderSettings) -> Image {
     let mut r = loaded(scene);
-    r.render(&scene.camera, &s).expect("renders");
+    r.render(&scene.camera, 0.0, &s).expect("renders");
     r.read_image().expect("image")
 }
 

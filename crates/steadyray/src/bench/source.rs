@@ -58,6 +58,7 @@ impl FrameSource for RendererSource {
 
     fn frame(&mut self, k: u32, n: u32, q: Quality) -> Result<Measured> {
         let camera = self.scene.camera_at(k, n);
+        let time_s = self.scene.path.frame_time(k, n);
         let (width, height) = scaled_size(self.width, self.height, q.scale);
         let settings = RenderSettings {
             width,
@@ -65,7 +66,7 @@ impl FrameSource for RendererSource {
             spp: q.spp,
             max_depth: q.depth,
         };
-        let stats = self.renderer.render(&camera, &settings)?;
+        let stats = self.renderer.render(&camera, time_s, &settings)?;
         let f = camera.forward;
         Ok(Measured {
             report: FrameReport {

@@ -110,6 +110,7 @@ fn measure(
     (spp, depth, scale): (f32, u32, f32),
 ) -> Result<Sample> {
     let camera = scene.camera_at(k, plan.frames);
+    let time_s = scene.path.frame_time(k, plan.frames);
     let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
     let settings = RenderSettings {
         width: side(plan.width),
@@ -118,7 +119,7 @@ fn measure(
         max_depth: depth,
     };
     let stats = renderer
-        .render(&camera, &settings)
+        .render(&camera, time_s, &settings)
         .with_context(|| format!("frame {k} at S={spp} R={depth} scale={scale}"))?;
     let image = shown(&renderer.read_image()?, plan.width, plan.height)?;
     Ok(Sample {

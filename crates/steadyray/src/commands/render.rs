@@ -19,26 +19,33 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     };
     settings.validate()?;
     image_format(&args.output)?;
-    let camera = match (args.yaw, args.frame) {
-        (Some(yaw), _) => {
+    if let Some(t) = args.time
+        && !t.is_finite()
+    {
+        bail!("--time {t} is not a finite number of seconds");
+    }
+    let (camera, time_s) = match (args.yaw, args.frame, args.time) {
+        (Some(yaw), _, time) => {
             let pitch = scene.camera.forward.normalize().y.clamp(-1.0, 1.0).asin();
-            Camera::yaw_pitch(scene.camera.eye, yaw, pitch, scene.camera.vfov_deg)
+            let camera = Camera::yaw_pitch(scene.camera.eye, yaw, pitch, scene.camera.vfov_deg);
+            (camera, time.unwrap_or(0.0))
         }
-        (None, Some(k)) => {
+        (None, Some(k), _) => {
             let n = args.frames.unwrap_or_else(|| scene.path.frames());
             if n == 0 || k >= n {
                 bail!("--frame {k} is outside a path of {n} frames");
             }
-            scene.camera_at(k, n)
+            (scene.camera_at(k, n), scene.path.frame_time(k, n))
         }
-        (None, None) => scene.camera,
+        (None, None, Some(t)) => (scene.camera_at_time(t), t),
+        (None, None, None) => (scene.camera, 0.0),
     };
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
     for _ in 0..args.warmup {
-        renderer.render(&camera, &settings)?;
+        renderer.render(&camera, time_s, &settings)?;
     }
-    let stats = renderer.render(&camera, &settings)?;
+    let stats = renderer.render(&camera, time_s, &settings)?;
     let image = renderer.read_image()?;
     save_image(&image, &args.output).with_context(|| format!("rendering {} failed", scene.name))?;
     if args.stats {
@@ -51,6 +58,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             "height": stats.height,
             "spp": settings.spp,
             "depth": settings.max_depth,
+            "time_s": time_s,
             "render_ms": stats.render_ms,
             "wall_ms": stats.wall_ms,
             "timing": format!("{:?}", stats.timing),

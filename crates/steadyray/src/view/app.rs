@@ -116,6 +116,11 @@ struct Live {
     sweep: Sweep,
     speed: f32,
     pixel_size: u32,
+    /// Scene time, s: where moving objects are. It runs with the window's clock (stopped
+    /// while paused) and starts over after the scene path's duration.
+    scene_time_s: f64,
+    /// The scene path's duration, s.
+    scene_duration_s: f64,
 }
 
 /// Playback's moving parts.
@@ -350,6 +355,8 @@ impl Running {
                         period_s: plan.sweep_seconds,
                     },
                     speed: plan.speed,
+                    scene_time_s: 0.0,
+                    scene_duration_s: scene.path.duration_s(),
                     pixel_size: plan
                         .pixel_size
                         .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
@@ -557,6 +564,8 @@ impl Running {
                     live.camera.look(look);
                     live.camera.translate(movement, live.speed * dt_s);
                     live.sweep.advance(&mut live.camera, dt_s);
+                    live.scene_time_s =
+                        (live.scene_time_s + f64::from(dt_s)).rem_euclid(live.scene_duration_s);
                 }
                 let q = live.control.quality();
                 let (width, height) =
@@ -572,7 +581,9 @@ impl Running {
                 if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
                     return Err(anyhow!("waiting for the GPU failed: {e}"));
                 }
-                let stats = live.renderer.render(&live.camera.camera(), &settings)?;
+                let stats =
+                    live.renderer
+                        .render(&live.camera.camera(), live.scene_time_s, &settings)?;
                 let (render_ms, source) = controller_time(&stats);
                 if source != TimingSource::GpuTimestamps
                     && self.timing.starts_with("GPU timestamps")

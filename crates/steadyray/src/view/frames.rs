@@ -90,9 +90,14 @@ impl LiveRenderer {
         Ok(self.renderer().load_scene(scene)?)
     }
 
-    /// Renders one frame.
-    pub fn render(&mut self, camera: &Camera, settings: &RenderSettings) -> Result<FrameStats> {
-        Ok(self.renderer().render(camera, settings)?)
+    /// Renders one frame of the scene at scene time `time_s`.
+    pub fn render(
+        &mut self,
+        camera: &Camera,
+        time_s: f64,
+        settings: &RenderSettings,
+    ) -> Result<FrameStats> {
+        Ok(self.renderer().render(camera, time_s, settings)?)
     }
 
     /// The last frame, where the present pass can read it.
