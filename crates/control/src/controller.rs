@@ -4,6 +4,7 @@ use crate::band::Band;
 use crate::error::ConfigError;
 use crate::fixed::Fixed;
 use crate::hysteresis::{Hysteresis, HysteresisParams};
+use crate::perceptual::{Perceptual, PerceptualParams};
 use crate::predictive::{Predictive, PredictiveParams};
 use crate::quality::{Bounds, Quality};
 use crate::report::{FrameReport, ReportError};
@@ -16,7 +17,7 @@ use std::str::FromStr;
 /// The loop: `q = c.quality()`, render with `q`, then `c.observe(&report)` (which returns the
 /// next quality, the same value `c.quality()` gives afterwards).
 pub trait Controller: Send + fmt::Debug {
-    /// The controller's name: `fixed`, `step`, `hysteresis` or `predictive`.
+    /// The controller's name: one of [`CONTROLLER_NAMES`].
     fn name(&self) -> &'static str;
 
     /// The quality to render the next frame with. Always inside the controller's bounds.
@@ -31,6 +32,13 @@ pub trait Controller: Send + fmt::Debug {
 
     /// Back to the starting quality with an empty history (e.g. between benchmark runs).
     fn reset(&mut self);
+
+    /// The frame time the controller has chosen to deliver, ms, for a controller that
+    /// chooses the frame rate itself (`perceptual`); `None` for one that holds the band it
+    /// was given.
+    fn target_frame_ms(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// What every controller needs: the band, the knobs' bounds and the starting quality.
@@ -67,9 +75,9 @@ impl Setup {
 }
 
 /// The names [`from_name`] accepts.
-pub const CONTROLLER_NAMES: [&str; 4] = ["fixed", "step", "hysteresis", "predictive"];
+pub const CONTROLLER_NAMES: [&str; 5] = ["fixed", "step", "hysteresis", "predictive", "perceptual"];
 
-/// Builds a controller by name (`fixed`, `step`, `hysteresis`, `predictive`) with options
+/// Builds a controller by name (`fixed`, `step`, `hysteresis`, `predictive`, `perceptual`) with options
 /// written `key=value`, separated by spaces or `;` (e.g. `"knob=depth"`,
 /// `"up_after=10; order=depth,spp"`). An empty string gives the defaults. Unknown names,
 /// unknown keys, unparsable values and bad setups are errors that say what is accepted.
@@ -113,6 +121,13 @@ pub fn from_name(
                 p.set(k, v)?;
             }
             Box::new(Predictive::new(setup, p)?)
+        }
+        "perceptual" => {
+            let mut p = PerceptualParams::default();
+            for (k, v) in &options {
+                p.set(k, v)?;
+            }
+            Box::new(Perceptual::new(setup, p)?)
         }
         other => return Err(ConfigError::UnknownController(other.to_string())),
     })

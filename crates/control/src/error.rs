@@ -33,7 +33,9 @@ pub enum ConfigError {
     #[error("start quality {quality} lies outside the bounds {bounds}")]
     StartOutOfBounds { quality: String, bounds: String },
     /// No controller has this name.
-    #[error("unknown controller `{0}`: expected one of fixed, step, hysteresis, predictive")]
+    #[error(
+        "unknown controller `{0}`: expected one of fixed, step, hysteresis, predictive, perceptual"
+    )]
     UnknownController(String),
     /// The controller has no option with this name.
     #[error("controller `{controller}` has no option `{key}`: it takes {expected}")]

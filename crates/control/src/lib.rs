@@ -46,13 +46,21 @@
 //!   at least `min_reach`=2 % of eye rays reach the deeper level, then scale, then S, then
 //!   the remaining R; cuts in reverse (S goes first, resolution next). `ladder`=PATH: move
 //!   along a calibrated Pareto front of (S, R, scale) settings instead ([`ladder`]).
+//! - `perceptual` ([`Perceptual`]): chooses the frame time too. From a quality model over
+//!   (screen speed, frame time, ladder point) ([`motion_model`], `model`=PATH, measured by
+//!   `calibrate --motion`) it picks, at each frame's measured speed, the frame time whose
+//!   best fitting ladder point looks best, and lets an inner `predictive` hold that time;
+//!   changes of the target are held `hold_ms`=500 and need a `margin`=0.02 of the model's
+//!   spread; the speed decided on falls with a time constant `fall_ms`=500. `hand_over`=1 ms, `width`=0.3 shape each frame time's band; the other options
+//!   are `predictive`'s.
 //!
 //! # Refused reports
 //!
 //! A report whose Tp is NaN, infinite, zero, negative or over [`MAX_FRAME_MS`] (one minute)
 //! is refused by every controller: `observe` returns a [`ReportError`] and nothing changes
 //! (quality, history and models), so one bad timer reading never poisons a run. `predictive`
-//! also refuses reports without pixels or eye rays ([`ReportError::NoRays`]).
+//! also refuses reports without pixels or eye rays ([`ReportError::NoRays`]), and
+//! `perceptual` a screen speed that is NaN, infinite or negative ([`ReportError::BadSpeed`]).
 //!
 //! # Testing without a GPU
 //!
@@ -67,6 +75,8 @@ pub mod fixed;
 pub mod hysteresis;
 pub mod ladder;
 pub mod metrics;
+pub mod motion_model;
+pub mod perceptual;
 pub mod predictive;
 pub mod quality;
 pub mod ray_model;
@@ -81,6 +91,8 @@ pub use fixed::Fixed;
 pub use hysteresis::{Hysteresis, HysteresisParams};
 pub use ladder::{Ladder, LadderPoint, pareto_front};
 pub use metrics::{FrameRecord, RunSummary, best_fixed, summarize};
+pub use motion_model::{Metric, MotionModel};
+pub use perceptual::{Perceptual, PerceptualParams, Prospect};
 pub use predictive::{Aim, Predictive, PredictiveParams};
 pub use quality::{Bounds, Knob, KnobOrder, Quality};
 pub use report::{FrameReport, MAX_FRAME_MS, ReportError};

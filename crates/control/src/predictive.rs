@@ -34,6 +34,7 @@
 //! predicted from the measured rays of the current view, so S, R and scale are chosen
 //! together by what looks best for the time the frame may take.
 
+use crate::band::Band;
 use crate::controller::{Controller, Setup, parse_option, within};
 use crate::cost_model::{CostModel, CostParams, Fit};
 use crate::error::ConfigError;
@@ -256,7 +257,11 @@ impl Predictive {
     /// Real frame-time noise is one-sided (other work only makes frames slower), so this aims
     /// below the centre exactly as far as the noise asks.
     pub fn aim(&self) -> Aim {
-        let band = self.setup.band;
+        self.aim_in(self.setup.band)
+    }
+
+    /// Where [`Predictive::aim`] would aim in `band` under the same measured noise.
+    pub fn aim_in(&self, band: Band) -> Aim {
         let p = &self.params;
         let nominal = Aim {
             target_ms: band.at(p.target),
@@ -362,6 +367,19 @@ impl Predictive {
             (Some(u), true) => (u, top),
             (Some(u), false) => (0.0, u),
         };
+        self.search_ladder(ladder, fits, (lo, hi), raising)
+    }
+
+    /// The highest position in `lo..=hi` for which `fits` holds: whole points from the top
+    /// down, then the segment above the best one bisected. When nothing fits: `lo` on a raise,
+    /// 0 on a cut.
+    fn search_ladder(
+        &self,
+        ladder: &Ladder,
+        fits: impl Fn(&Quality) -> bool,
+        (lo, hi): (f64, f64),
+        raising: bool,
+    ) -> f64 {
         let at = |u: f64| fits(&self.ladder_quality(ladder, u));
         let whole = (lo.ceil() as usize..=hi.floor() as usize)
             .rev()
@@ -384,6 +402,40 @@ impl Predictive {
             }
         }
         ok
+    }
+
+    /// The highest position on the ladder predicted to take at most `target_ms` on the current
+    /// view (no limit on the raise), or `None` before the first frame, without a ladder, or
+    /// when even its cheapest point is predicted to take longer: where this controller would
+    /// settle if `target_ms` were its target. The `perceptual` controller asks it for every
+    /// frame time it considers.
+    pub fn ladder_position_within(&self, target_ms: f64) -> Option<f64> {
+        let ladder = self.params.ladder.as_ref()?;
+        let fits = |q: &Quality| self.predict_ms(q).is_some_and(|t| t <= target_ms);
+        if !fits(&self.ladder_quality(ladder, 0.0)) {
+            return None;
+        }
+        let top = (ladder.points.len() - 1) as f64;
+        Some(self.search_ladder(ladder, fits, (0.0, top), true))
+    }
+
+    /// The band in use.
+    pub fn band(&self) -> Band {
+        self.setup.band
+    }
+
+    /// Moves the band to `band` and re-plans the quality at once from the last frame's
+    /// measurements (as if that frame had been observed under the new band), so a new target
+    /// frame time takes effect with the next frame. Returns the next quality.
+    pub fn retarget(&mut self, band: Band) -> Quality {
+        self.setup.band = band;
+        self.above_run = 0;
+        let (quality, ladder_pos) = self.decide();
+        self.quality = quality;
+        if ladder_pos.is_some() {
+            self.ladder_pos = ladder_pos;
+        }
+        self.quality
     }
 
     /// The highest quality along the knob order for which `fits` holds. A raise starts from
@@ -525,7 +577,6 @@ impl Controller for Predictive {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::band::Band;
     use crate::quality::Bounds;
 
     /// A frame of a simple scene: half the rays go one level deeper; 1 ms + 1 ns per ray.
@@ -542,6 +593,7 @@ mod tests {
             shadow_rays: 0,
             pixels,
             quality: q,
+            speed_deg_s: 0.0,
         }
     }
 

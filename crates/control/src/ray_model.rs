@@ -111,6 +111,7 @@ mod tests {
             shadow_rays: 350,
             pixels: 1000,
             quality: Quality::new(2.0, 2, 0.5),
+            speed_deg_s: 0.0,
         }
     }
 

@@ -22,6 +22,11 @@ pub struct FrameReport {
     pub pixels: u64,
     /// The quality this frame was rendered with.
     pub quality: Quality,
+    /// How fast what the frame shows moves on screen, degrees of visual angle per second
+    /// (the renderer's measure of motion; 0 for a still view or when nobody measured it).
+    /// Only the `perceptual` controller reads it: it picks the frame rate from it.
+    #[serde(default)]
+    pub speed_deg_s: f64,
 }
 
 /// Why a report was refused. A refused report changes nothing: every controller returns the
@@ -40,6 +45,9 @@ pub enum ReportError {
     /// The predictive controller needs ray counts and a pixel count; this report has none.
     #[error("the report has no rays or no pixels: the predictive controller needs both")]
     NoRays,
+    /// The screen speed is NaN, infinite or negative (the `perceptual` controller reads it).
+    #[error("screen speed {0} deg/s is invalid: it must be a finite number, 0 or more")]
+    BadSpeed(f64),
 }
 
 impl FrameReport {
@@ -83,6 +91,7 @@ mod tests {
             shadow_rays: 30,
             pixels: 100,
             quality: Quality::new(1.0, 1, 1.0),
+            speed_deg_s: 0.0,
         }
     }
 

@@ -200,6 +200,9 @@ pub struct RendererModel {
     pub seed: u64,
     /// The load of each frame.
     pub profile: LoadProfile,
+    /// The screen speed each frame reports, deg/s, by frame (repeated cyclically; empty: a
+    /// still picture, 0).
+    pub speed_deg_s: Vec<f64>,
 }
 
 impl RendererModel {
@@ -218,12 +221,29 @@ impl RendererModel {
             timer_ms: 1.0,
             seed: 1,
             profile: LoadProfile::Corridor { frames },
+            speed_deg_s: Vec::new(),
         }
     }
 
     /// The corridor model with another load profile.
     pub fn with_profile(self, profile: LoadProfile) -> Self {
         Self { profile, ..self }
+    }
+
+    /// The model with frames reporting these screen speeds (deg/s, by frame, cyclic).
+    pub fn with_speeds(self, speed_deg_s: Vec<f64>) -> Self {
+        Self {
+            speed_deg_s,
+            ..self
+        }
+    }
+
+    /// The screen speed frame `frame` reports, deg/s.
+    pub fn speed_at(&self, frame: usize) -> f64 {
+        match self.speed_deg_s.len() {
+            0 => 0.0,
+            n => self.speed_deg_s[frame % n],
+        }
     }
 
     /// The noise-free time of a frame at quality `q` under `load`, ms.
@@ -337,6 +357,7 @@ impl SimRenderer {
             shadow_rays,
             pixels: m.pixels(&q),
             quality: q,
+            speed_deg_s: m.speed_at(frame),
         }
     }
 }

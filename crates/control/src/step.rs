@@ -161,6 +161,7 @@ mod tests {
             shadow_rays: 0,
             pixels: 1,
             quality: q,
+            speed_deg_s: 0.0,
         }
     }
 

@@ -1,6 +1,16 @@
 //! Bad arguments are clear errors.
 
+mod common;
+
 use steadyray_control::{Band, Bounds, ConfigError, Quality, Setup, from_name};
+
+/// The options a controller needs to be built: none, or `perceptual`'s model.
+fn needed_options(name: &str) -> String {
+    match name {
+        "perceptual" => format!("model={}", common::model_file().display()),
+        _ => String::new(),
+    }
+}
 
 fn setup() -> Setup {
     let b = Bounds::default();
@@ -10,7 +20,7 @@ fn setup() -> Setup {
 #[test]
 fn every_name_builds_with_defaults() {
     for name in steadyray_control::CONTROLLER_NAMES {
-        let c = from_name(name, setup(), "").unwrap();
+        let c = from_name(name, setup(), &needed_options(name)).unwrap();
         assert_eq!(c.name(), name);
         assert_eq!(c.quality(), Bounds::default().max_quality());
     }
@@ -101,7 +111,10 @@ fn bad_bands_bounds_and_starts_are_errors() {
         start,
     };
     for name in steadyray_control::CONTROLLER_NAMES {
-        assert!(from_name(name, bad, "").is_err(), "{name}");
+        assert!(
+            from_name(name, bad, &needed_options(name)).is_err(),
+            "{name}"
+        );
     }
     // Step on S needs a whole S inside the bounds: an empty ladder.
     let narrow = Bounds {

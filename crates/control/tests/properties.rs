@@ -1,5 +1,7 @@
 //! Properties over arbitrary report sequences.
 
+mod common;
+
 use proptest::prelude::*;
 use steadyray_control::{Band, Bounds, FrameReport, Quality, Setup, from_name};
 
@@ -19,21 +21,25 @@ proptest! {
 
     #[test]
     fn quality_always_stays_inside_bounds(
-        name in prop::sample::select(vec!["fixed", "step", "hysteresis", "predictive"]),
+        name in prop::sample::select(vec!["fixed", "step", "hysteresis", "predictive", "perceptual"]),
         knob in prop::sample::select(vec!["depth", "spp", "both"]),
-        frames in prop::collection::vec((tp(), 1u64..5_000_000, 0.0f64..1.0, 0u64..3_000_000), 1..120),
+        frames in prop::collection::vec((tp(), 1u64..5_000_000, 0.0f64..1.0, 0u64..3_000_000, 0.0f64..200.0), 1..120),
         tmin in 1.0f64..50.0,
         width in 0.5f64..30.0,
     ) {
         let bounds = Bounds::new((1.0, 64.0), (0, 12), (0.25, 1.0)).unwrap();
         let setup = Setup::new(Band::new(tmin, tmin + width).unwrap(), bounds, Quality::new(4.0, 4, 0.5)).unwrap();
-        let opts = if name == "step" { format!("knob={knob}") } else { String::new() };
+        let opts = match name {
+            "step" => format!("knob={knob}"),
+            "perceptual" => format!("model={}", common::model_file().display()),
+            _ => String::new(),
+        };
         let mut c = from_name(name, setup, &opts).unwrap();
-        for (tp_ms, eye, decay, shadow) in frames {
+        for (tp_ms, eye, decay, shadow, speed) in frames {
             let q = c.quality();
             let depth = q.depth as usize;
             let rays: Vec<u64> = (0..=depth).map(|k| (eye as f64 * decay.powi(k as i32)) as u64).collect();
-            let report = FrameReport { tp_ms, rays_per_depth: rays, shadow_rays: shadow, pixels: eye.div_ceil(4), quality: q };
+            let report = FrameReport { tp_ms, rays_per_depth: rays, shadow_rays: shadow, pixels: eye.div_ceil(4), quality: q, speed_deg_s: speed };
             let before = c.quality();
             match c.observe(&report) {
                 Ok(next) => {

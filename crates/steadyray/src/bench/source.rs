@@ -75,6 +75,7 @@ impl FrameSource for RendererSource {
                 shadow_rays: stats.rays.shadow,
                 pixels: settings.pixels(),
                 quality: q,
+                speed_deg_s: 0.0,
             },
             wall_ms: stats.wall_ms,
             angle: (-f.x).atan2(-f.z).rem_euclid(std::f32::consts::TAU),

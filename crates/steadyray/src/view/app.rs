@@ -607,6 +607,7 @@ impl Running {
                     shadow_rays: stats.rays.shadow,
                     pixels: settings.pixels(),
                     quality: q,
+                    speed_deg_s: 0.0,
                 };
                 if let Err(e) = live.control.observe(&report) {
                     log::warn!("the controller refused a frame report: {e}");

@@ -115,6 +115,7 @@ mod tests {
             shadow_rays: 8_000,
             pixels: 10_000,
             quality: q,
+            speed_deg_s: 0.0,
         }
     }
 

@@ -1,0 +1,312 @@
+//! A quality model over (speed, frame time, setting): how good the displayed video looks when
+//! what it shows moves on screen at a given speed, each frame stays on screen for a given
+//! time, and frames are rendered at a given point of a calibrated [`Ladder`].
+//!
+//! `steadyray calibrate --motion` measures it (short stimuli at fixed speeds, frame times and
+//! settings, scored against a reference video) and writes it as `motion.json`; the
+//! `perceptual` controller reads it to choose the frame rate and the quality together
+//! ([`crate::perceptual`]).
+//!
+//! # `motion.json`
+//!
+//! ```json
+//! {
+//!   "metric": "jod",
+//!   "scene": "corridor",
+//!   "resolution": [640, 360],
+//!   "refresh_hz": 60.0,
+//!   "stimulus_s": 1.0,
+//!   "viewing": { "name": "standard_fhd", "diagonal_in": 24.0, "resolution": [1920, 1080], "distance_m": 0.6 },
+//!   "ladder": { "scene": "corridor", "resolution": [640, 360], "reference": { "spp": 16.0, "depth": 16, "scale": 1.0 }, "views": 8, "points": [ ... ] },
+//!   "speeds_deg_s": [0.0, 10.0, 40.0],
+//!   "frame_times_ms": [16.667, 33.333, 50.0],
+//!   "scores": [ [ [7.1, 8.0], [7.3, 8.4], [7.4, 8.6] ], ... ]
+//! }
+//! ```
+//!
+//! - `metric`: what the scores are. `jod`: ColorVideoVDP's just-objectionable-difference
+//!   units of the displayed video against the reference video (10 = indistinguishable;
+//!   higher is better): the figure claims rest on. `displayed_flip`: mean FLIP of the screen
+//!   against the reference at each refresh (0 = identical; lower is better), the fill-in when
+//!   Python is not available. The controller maximizes the score, or minimizes it for
+//!   `displayed_flip`.
+//! - `speeds_deg_s`: the stimuli's speeds on screen, degrees of visual angle per second
+//!   under `viewing`, strictly rising from 0 or more.
+//! - `frame_times_ms`: how long each frame stays on screen, strictly rising: the frame
+//!   times a controller may choose (on a fixed-refresh display, whole numbers of refreshes).
+//! - `ladder`: the settings scored, in the format of `ladder.json` ([`crate::ladder`]).
+//! - `scores[i][j][k]`: the score at speed i, frame time j and ladder point k.
+//! - `scene`, `resolution`, `refresh_hz`, `stimulus_s` (each stimulus's length) and `viewing`
+//!   say what was measured.
+//!
+//! Between grid values the model interpolates linearly in speed and in the ladder position
+//! (as the `predictive` controller moves between ladder points), and holds the end values
+//! beyond the grid's speeds.
+
+use crate::ladder::Ladder;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::Path;
+
+/// What a model's scores measure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Metric {
+    /// ColorVideoVDP's JOD of the displayed video against the reference (higher is better).
+    Jod,
+    /// Mean FLIP of the screen against the reference at each refresh (lower is better).
+    DisplayedFlip,
+}
+
+impl Metric {
+    /// +1 when a higher score is better, −1 when a lower one is.
+    pub fn sign(self) -> f64 {
+        match self {
+            Metric::Jod => 1.0,
+            Metric::DisplayedFlip => -1.0,
+        }
+    }
+}
+
+impl fmt::Display for Metric {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Metric::Jod => "jod",
+            Metric::DisplayedFlip => "displayed_flip",
+        })
+    }
+}
+
+/// A quality model over (speed, frame time, ladder point): see the module documentation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MotionModel {
+    pub metric: Metric,
+    /// The scene the stimuli showed.
+    pub scene: String,
+    /// Full-scale image size of the stimuli.
+    pub resolution: [u32; 2],
+    /// The display's refresh rate the stimuli were shown at, Hz.
+    pub refresh_hz: f64,
+    /// Each stimulus's length, s.
+    pub stimulus_s: f64,
+    /// The viewing set-up the scores assume (information only).
+    pub viewing: serde_json::Value,
+    /// The settings scored.
+    pub ladder: Ladder,
+    /// Speeds on screen, degrees of visual angle per second, strictly rising.
+    pub speeds_deg_s: Vec<f64>,
+    /// Frame times (time on screen per frame), ms, strictly rising.
+    pub frame_times_ms: Vec<f64>,
+    /// `scores[speed][frame time][ladder point]`.
+    pub scores: Vec<Vec<Vec<f64>>>,
+}
+
+/// Checks that `values` are finite, at least `min` (and above it if `strict_min`), and
+/// strictly rising.
+fn check_axis(name: &str, values: &[f64], min: f64, strict_min: bool) -> Result<(), String> {
+    if values.is_empty() {
+        return Err(format!("{name} is empty"));
+    }
+    for (i, &v) in values.iter().enumerate() {
+        let low = if strict_min { v <= min } else { v < min };
+        if !v.is_finite() || low {
+            let bound = if strict_min { "above" } else { "at least" };
+            return Err(format!(
+                "{name}[{i}] = {v} must be finite and {bound} {min}"
+            ));
+        }
+        if i > 0 && v <= values[i - 1] {
+            return Err(format!(
+                "{name} must rise strictly: {} then {v}",
+                values[i - 1]
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl MotionModel {
+    /// Checks the axes, the ladder and that `scores` has one finite score per cell.
+    pub fn validate(&self) -> Result<(), String> {
+        check_axis("speeds_deg_s", &self.speeds_deg_s, 0.0, false)?;
+        check_axis("frame_times_ms", &self.frame_times_ms, 0.0, true)?;
+        self.ladder.validate().map_err(|e| format!("ladder: {e}"))?;
+        if !(self.refresh_hz.is_finite() && self.refresh_hz > 0.0) {
+            return Err(format!("refresh_hz = {} must be above 0", self.refresh_hz));
+        }
+        let (s, f, p) = (
+            self.speeds_deg_s.len(),
+            self.frame_times_ms.len(),
+            self.ladder.points.len(),
+        );
+        let shape_ok = self.scores.len() == s
+            && self
+                .scores
+                .iter()
+                .all(|row| row.len() == f && row.iter().all(|cells| cells.len() == p));
+        if !shape_ok {
+            return Err(format!(
+                "scores must be {s} speeds x {f} frame times x {p} ladder points"
+            ));
+        }
+        for (i, row) in self.scores.iter().enumerate() {
+            for (j, cells) in row.iter().enumerate() {
+                if let Some(k) = cells.iter().position(|v| !v.is_finite()) {
+                    return Err(format!("scores[{i}][{j}][{k}] is not a finite number"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Parses and checks a model from JSON.
+    pub fn from_json(text: &str) -> Result<Self, String> {
+        let model: MotionModel = serde_json::from_str(text).map_err(|e| e.to_string())?;
+        model.validate()?;
+        Ok(model)
+    }
+
+    /// Reads and checks `motion.json`.
+    pub fn load(path: &Path) -> Result<Self, String> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        Self::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// The score at grid speed `i`, frame time `j` and ladder position `u` (linear between
+    /// points, clamped to the ladder).
+    fn at_position(&self, i: usize, j: usize, u: f64) -> f64 {
+        let cells = &self.scores[i][j];
+        let last = cells.len() - 1;
+        let u = u.clamp(0.0, last as f64);
+        let k = (u.floor() as usize).min(last);
+        let t = u - k as f64;
+        cells[k] + t * (cells[(k + 1).min(last)] - cells[k])
+    }
+
+    /// The predicted score of frames shown for `frame_times_ms[j]` at ladder position `u`
+    /// (point k at u = k) when the picture moves at `speed_deg_s`: linear in speed between
+    /// the grid's speeds, the end values beyond them.
+    pub fn score(&self, speed_deg_s: f64, j: usize, u: f64) -> f64 {
+        let speeds = &self.speeds_deg_s;
+        let i = speeds.partition_point(|&s| s <= speed_deg_s);
+        if i == 0 {
+            return self.at_position(0, j, u);
+        }
+        if i == speeds.len() {
+            return self.at_position(i - 1, j, u);
+        }
+        let t = (speed_deg_s - speeds[i - 1]) / (speeds[i] - speeds[i - 1]);
+        let (a, b) = (self.at_position(i - 1, j, u), self.at_position(i, j, u));
+        a + t * (b - a)
+    }
+
+    /// The score as a utility: higher is better whatever the metric.
+    pub fn utility(&self, speed_deg_s: f64, j: usize, u: f64) -> f64 {
+        self.metric.sign() * self.score(speed_deg_s, j, u)
+    }
+
+    /// The spread of the scores over the whole table (highest minus lowest): the scale
+    /// against which the `perceptual` controller's hysteresis margin is set.
+    pub fn spread(&self) -> f64 {
+        let all = self.scores.iter().flatten().flatten().copied();
+        let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        (hi - lo).max(0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ladder::{LadderPoint, Reference};
+
+    pub(crate) fn model() -> MotionModel {
+        let point = |spp: f32, rays: f64, flip: f64| LadderPoint {
+            spp,
+            depth: 4,
+            scale: 1.0,
+            rays,
+            ms: rays / 1e6,
+            flip,
+        };
+        MotionModel {
+            metric: Metric::Jod,
+            scene: "test".into(),
+            resolution: [64, 36],
+            refresh_hz: 60.0,
+            stimulus_s: 1.0,
+            viewing: serde_json::Value::Null,
+            ladder: Ladder {
+                scene: "test".into(),
+                resolution: [64, 36],
+                reference: Reference {
+                    spp: 16.0,
+                    depth: 4,
+                    scale: 1.0,
+                },
+                views: 1,
+                points: vec![point(1.0, 1e6, 0.2), point(4.0, 4e6, 0.1)],
+            },
+            speeds_deg_s: vec![0.0, 20.0],
+            frame_times_ms: vec![16.0, 32.0],
+            scores: vec![
+                vec![vec![6.0, 8.0], vec![6.0, 8.0]],
+                vec![vec![5.0, 7.0], vec![3.0, 5.0]],
+            ],
+        }
+    }
+
+    #[test]
+    fn interpolates_in_speed_and_ladder_position() {
+        let m = model();
+        m.validate().unwrap();
+        assert_eq!(m.score(0.0, 0, 0.0), 6.0);
+        assert_eq!(m.score(0.0, 0, 0.5), 7.0);
+        assert_eq!(m.score(10.0, 1, 1.0), 6.5);
+        assert_eq!(
+            m.score(-5.0, 1, 0.0),
+            6.0,
+            "below the grid: the first speed"
+        );
+        assert_eq!(
+            m.score(100.0, 1, 9.0),
+            5.0,
+            "beyond the grid and the ladder"
+        );
+        assert_eq!(m.spread(), 5.0);
+        let flip = MotionModel {
+            metric: Metric::DisplayedFlip,
+            ..m
+        };
+        assert_eq!(flip.utility(0.0, 0, 0.0), -6.0);
+    }
+
+    #[test]
+    fn json_round_trips_and_bad_tables_are_named() {
+        let m = model();
+        let text = serde_json::to_string(&m).unwrap();
+        assert_eq!(MotionModel::from_json(&text).unwrap(), m);
+        let mut bad = m.clone();
+        bad.scores[1][0].pop();
+        assert!(
+            bad.validate()
+                .unwrap_err()
+                .contains("2 speeds x 2 frame times")
+        );
+        let mut bad = m.clone();
+        bad.scores[0][1][1] = f64::NAN;
+        assert!(bad.validate().unwrap_err().contains("scores[0][1][1]"));
+        let mut bad = m.clone();
+        bad.frame_times_ms = vec![32.0, 16.0];
+        assert!(bad.validate().unwrap_err().contains("rise strictly"));
+        let mut bad = m.clone();
+        bad.frame_times_ms[0] = 0.0;
+        assert!(bad.validate().unwrap_err().contains("above 0"));
+        let mut bad = m;
+        bad.speeds_deg_s[0] = f64::NAN;
+        assert!(bad.validate().unwrap_err().contains("speeds_deg_s[0]"));
+        assert!(MotionModel::from_json(r#"{"metric": "psnr"}"#).is_err());
+    }
+}

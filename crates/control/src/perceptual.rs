@@ -1,0 +1,332 @@
+//! `perceptual`: chooses the frame rate and the image quality together, by what the viewer
+//! will see at the speed the picture moves.
+//!
+//! After Denes, Jindal, Mikhailiuk and Mantiuk (*A perceptual model of motion quality for
+//! rendering with adaptive refresh-rate and resolution*, SIGGRAPH 2020): fast motion on
+//! screen calls for short frames (judder and hold blur dominate), slow motion for a better
+//! picture at a lower rate. A [`MotionModel`] scores (speed, frame time, ladder point);
+//! each frame this controller
+//!
+//! 1. lets an inner [`Predictive`] controller on the model's ladder take the frame (its cost
+//!    and ray models, its cuts on overload) and keep the current target's band;
+//! 2. asks, for every frame time T the model knows, where on the ladder the predictive
+//!    controller would settle with T as its target ([`Predictive::ladder_position_within`]
+//!    at the aim of T's band), and what the model scores that at the frame's measured speed
+//!    ([`FrameReport::speed_deg_s`]);
+//!    The speed it decides on rises at once with the measured one and falls slowly
+//!    (`fall_ms`: it decays toward a lower measured speed with that time constant), so a
+//!    fast turn gets short frames from its first frame and a speed jittering across the
+//!    point where two frame times score the same does not switch between them;
+//! 3. moves the target to the best frame time, hysteretically: only when it scores more than
+//!    `margin` (a fraction of the table's spread) above the current one, and at most once per
+//!    `hold_ms` of display time (counted as each frame's target time), so the rate does not
+//!    flicker between two refresh multiples. A target none of whose settings fits any more
+//!    (the cheapest predicted over its band) gives way at once.
+//!
+//! The band for a frame time T (so that a frame started at a refresh is handed over before
+//! the refresh T later) is [T − `hand_over` − `width`·T, T − `hand_over`]. The setup's band is
+//! not used: the bands come from the model's frame times. The target starts at the longest
+//! frame time (a still picture is best shown at the highest quality).
+//!
+//! Why a controller of its own and not a target mode of `predictive`: the choice of a frame
+//! time needs a model of the viewer and the speed on screen, which `predictive` (a band
+//! holder any engine can use without either) should not carry; composed, the frame-time
+//! choice sits on top of the one cost model, and `predictive` keeps the chosen time exactly
+//! as it keeps any band.
+//!
+//! Options: `model`=PATH (a `motion.json` from `calibrate --motion`, required),
+//! `hold_ms`=500, `margin`=0.02, `fall_ms`=500, `hand_over`=1 (ms), `width`=0.3, and every option of
+//! `predictive` but `ladder` (the ladder is the model's).
+
+use crate::band::Band;
+use crate::controller::{Controller, Setup, parse_option, within};
+use crate::error::ConfigError;
+use crate::motion_model::MotionModel;
+use crate::predictive::{Predictive, PredictiveParams};
+use crate::quality::Quality;
+use crate::report::{FrameReport, ReportError};
+
+/// Parameters of [`Perceptual`], with their option names and defaults.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PerceptualParams {
+    /// `model`: the quality model (a `motion.json`). Required.
+    pub model: Option<MotionModel>,
+    /// `hold_ms`: display time (ms, each frame counted at its target time) between two
+    /// changes of the target. Default 500.
+    pub hold_ms: f64,
+    /// `margin`: how much better another frame time must score to be taken, as a fraction
+    /// of the model's spread of scores. Default 0.02.
+    pub margin: f64,
+    /// `fall_ms`: the time constant with which the speed decided on falls toward a lower
+    /// measured speed (display time, each frame at its target time); it rises at once.
+    /// Default 500.
+    pub fall_ms: f64,
+    /// `hand_over`: the time a frame takes from the end of its render to the display, ms:
+    /// the band for frame time T ends at T minus it. Default 1.
+    pub hand_over_ms: f64,
+    /// `width`: the band's width as a fraction of its frame time. Default 0.3.
+    pub width: f64,
+    /// The inner predictive controller's options (its `ladder` is the model's).
+    pub predictive: PredictiveParams,
+}
+
+impl Default for PerceptualParams {
+    fn default() -> Self {
+        Self {
+            model: None,
+            hold_ms: 500.0,
+            margin: 0.02,
+            fall_ms: 500.0,
+            hand_over_ms: 1.0,
+            width: 0.3,
+            predictive: PredictiveParams::default(),
+        }
+    }
+}
+
+const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, width, and predictive's options \
+                               (order, target, deadband, min_reach, max_raise, trend, \
+                               measured_cut, forgetting, outlier_k, confirm)";
+
+impl PerceptualParams {
+    /// Sets one option by name (used by [`crate::from_name`]).
+    pub fn set(&mut self, key: &str, value: &str) -> Result<(), ConfigError> {
+        match key {
+            "model" => {
+                let model =
+                    MotionModel::load(std::path::Path::new(value.trim())).map_err(|why| {
+                        ConfigError::BadOption {
+                            key: key.to_string(),
+                            value: value.to_string(),
+                            why,
+                        }
+                    })?;
+                self.model = Some(model);
+            }
+            "hold_ms" => self.hold_ms = parse_option(key, value, within(0.0, 1e6))?,
+            "margin" => self.margin = parse_option(key, value, within(0.0, 1.0))?,
+            "fall_ms" => self.fall_ms = parse_option(key, value, within(0.0, 1e6))?,
+            "hand_over" => self.hand_over_ms = parse_option(key, value, within(0.0, 1e3))?,
+            "width" => self.width = parse_option(key, value, within(0.05, 0.9))?,
+            "ladder" => {
+                return Err(ConfigError::BadOption {
+                    key: key.to_string(),
+                    value: value.to_string(),
+                    why: "perceptual moves along its model's ladder; give model=PATH".into(),
+                });
+            }
+            _ => {
+                self.predictive.set(key, value).map_err(|e| match e {
+                    ConfigError::UnknownOption { key, .. } => ConfigError::UnknownOption {
+                        controller: "perceptual",
+                        key,
+                        expected: PERCEPTUAL_KEYS,
+                    },
+                    other => other,
+                })?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What one frame time promises at the measured speed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Prospect {
+    /// The frame time, ms.
+    pub frame_ms: f64,
+    /// Where on the ladder the predictive controller would settle with this target, or
+    /// `None` when even the cheapest point is predicted not to fit (or before any frame).
+    pub position: Option<f64>,
+    /// The model's utility there (higher is better), `None` with no position.
+    pub utility: Option<f64>,
+}
+
+/// The perceptual controller (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct Perceptual {
+    model: MotionModel,
+    hold_ms: f64,
+    margin: f64,
+    fall_ms: f64,
+    bands: Vec<Band>,
+    inner: Predictive,
+    /// Index of the target frame time in the model's.
+    target: usize,
+    /// Display time since the target last changed, ms (each frame at its target time).
+    held_ms: f64,
+    /// The speed decided on, deg/s: the measured speed, held as it falls (`fall_ms`).
+    speed_deg_s: f64,
+}
+
+impl Perceptual {
+    /// A perceptual controller; errors on a bad setup, a missing model, or a frame time too
+    /// short to leave a band after the hand-over.
+    pub fn new(setup: Setup, params: PerceptualParams) -> Result<Self, ConfigError> {
+        let model = params.model.ok_or_else(|| ConfigError::BadOption {
+            key: "model".into(),
+            value: String::new(),
+            why: "perceptual needs a quality model: model=PATH to a motion.json written by \
+                  `steadyray calibrate --motion`"
+                .into(),
+        })?;
+        let bands = model
+            .frame_times_ms
+            .iter()
+            .map(|&t| {
+                let tmax = t - params.hand_over_ms;
+                Band::new(tmax - params.width * t, tmax).map_err(|_| ConfigError::BadOption {
+                    key: "hand_over".into(),
+                    value: params.hand_over_ms.to_string(),
+                    why: format!(
+                        "frame time {t} ms leaves no band after a {} ms hand-over and a width \
+                         of {} of the frame time",
+                        params.hand_over_ms, params.width
+                    ),
+                })
+            })
+            .collect::<Result<Vec<Band>, ConfigError>>()?;
+        let target = bands.len() - 1;
+        let inner_params = PredictiveParams {
+            ladder: Some(model.ladder.clone()),
+            ..params.predictive
+        };
+        let inner = Predictive::new(
+            Setup {
+                band: bands[target],
+                ..setup
+            },
+            inner_params,
+        )?;
+        Ok(Self {
+            model,
+            hold_ms: params.hold_ms,
+            margin: params.margin,
+            fall_ms: params.fall_ms,
+            bands,
+            inner,
+            target,
+            held_ms: 0.0,
+            speed_deg_s: 0.0,
+        })
+    }
+
+    /// The quality model in use.
+    pub fn model(&self) -> &MotionModel {
+        &self.model
+    }
+
+    /// The target frame time, ms.
+    pub fn target_ms(&self) -> f64 {
+        self.model.frame_times_ms[self.target]
+    }
+
+    /// The band that keeps the target frame time.
+    pub fn band(&self) -> Band {
+        self.bands[self.target]
+    }
+
+    /// The speed the last decision was made at, deg/s (see `fall_ms`).
+    pub fn decided_speed_deg_s(&self) -> f64 {
+        self.speed_deg_s
+    }
+
+    /// The inner predictive controller.
+    pub fn predictive(&self) -> &Predictive {
+        &self.inner
+    }
+
+    /// What every frame time of the model promises at `speed_deg_s`, from the current
+    /// view's measurements.
+    pub fn prospects(&self, speed_deg_s: f64) -> Vec<Prospect> {
+        self.bands
+            .iter()
+            .enumerate()
+            .map(|(j, band)| {
+                let aim = self.inner.aim_in(*band);
+                let position = self.inner.ladder_position_within(aim.target_ms);
+                Prospect {
+                    frame_ms: self.model.frame_times_ms[j],
+                    position,
+                    utility: position.map(|u| self.model.utility(speed_deg_s, j, u)),
+                }
+            })
+            .collect()
+    }
+
+    /// The frame time to target next, from the prospects: the best, if it beats the current
+    /// target by the margin after the hold (at once if the current one cannot be kept).
+    fn choose(&self, prospects: &[Prospect]) -> usize {
+        // Ties go to the longer frame time (the better picture); none feasible: the longest.
+        let best = (0..prospects.len())
+            .rev()
+            .filter_map(|j| prospects[j].utility.map(|u| (j, u)))
+            .fold(None, |acc: Option<(usize, f64)>, (j, u)| match acc {
+                Some((_, b)) if b >= u => acc,
+                _ => Some((j, u)),
+            });
+        let Some((best, best_utility)) = best else {
+            return prospects.len() - 1;
+        };
+        if best == self.target {
+            return self.target;
+        }
+        match prospects[self.target].utility {
+            None => best,
+            Some(current) => {
+                let margin = self.margin * self.model.spread();
+                let better = best_utility > current + margin;
+                if better && self.held_ms >= self.hold_ms {
+                    best
+                } else {
+                    self.target
+                }
+            }
+        }
+    }
+}
+
+impl Controller for Perceptual {
+    fn name(&self) -> &'static str {
+        "perceptual"
+    }
+
+    fn quality(&self) -> Quality {
+        self.inner.quality()
+    }
+
+    fn observe(&mut self, report: &FrameReport) -> Result<Quality, ReportError> {
+        let speed = report.speed_deg_s;
+        if !(speed.is_finite() && speed >= 0.0) {
+            return Err(ReportError::BadSpeed(speed));
+        }
+        self.inner.observe(report)?;
+        let elapsed = self.target_ms();
+        self.held_ms += elapsed;
+        let kept = if self.fall_ms > 0.0 {
+            self.speed_deg_s * (-elapsed / self.fall_ms).exp()
+        } else {
+            0.0
+        };
+        self.speed_deg_s = speed.max(kept);
+        let next = self.choose(&self.prospects(self.speed_deg_s));
+        if next != self.target {
+            self.target = next;
+            self.held_ms = 0.0;
+            self.inner.retarget(self.bands[next]);
+        }
+        Ok(self.inner.quality())
+    }
+
+    fn reset(&mut self) {
+        self.inner.reset();
+        self.target = self.bands.len() - 1;
+        self.held_ms = 0.0;
+        self.speed_deg_s = 0.0;
+        self.inner.retarget(self.bands[self.target]);
+    }
+
+    fn target_frame_ms(&self) -> Option<f64> {
+        Some(self.target_ms())
+    }
+}

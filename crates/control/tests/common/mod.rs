@@ -1,0 +1,81 @@
+//! What several test files share: a quality model over (speed, frame time, ladder point)
+//! where still pictures prefer long frames and fast ones short frames.
+
+use std::path::PathBuf;
+use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
+use steadyray_control::{Metric, MotionModel};
+
+pub const FRAME_TIMES: [f64; 3] = [1000.0 / 60.0, 2000.0 / 60.0, 3000.0 / 60.0];
+pub const FAST: f64 = 60.0;
+/// Eye rays per pixel of the ladder's points (R = 4, full scale).
+const LADDER_SPP: [f32; 7] = [1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0];
+
+/// A ladder of S at R = 4 (its rays and FLIP are only information for the controller).
+fn ladder() -> Ladder {
+    let points = LADDER_SPP
+        .iter()
+        .enumerate()
+        .map(|(i, &spp)| LadderPoint {
+            spp,
+            depth: 4,
+            scale: 1.0,
+            rays: f64::from(spp) * 1e6,
+            ms: f64::from(spp) * 4.0,
+            flip: 0.3 / (1.0 + i as f64),
+        })
+        .collect();
+    Ladder {
+        scene: "simulated".into(),
+        resolution: [640, 360],
+        reference: Reference {
+            spp: 16.0,
+            depth: 4,
+            scale: 1.0,
+        },
+        views: 1,
+        points,
+    }
+}
+
+/// A model where a better ladder point scores up to 3 JOD more and judder costs
+/// speed · frame time / 400 JOD: still pictures prefer long frames, fast ones short frames.
+pub fn model() -> MotionModel {
+    let ladder = ladder();
+    let n = ladder.points.len();
+    let speeds = vec![0.0, FAST];
+    let scores = speeds
+        .iter()
+        .map(|&v| {
+            FRAME_TIMES
+                .iter()
+                .map(|&t| {
+                    (0..n)
+                        .map(|k| 6.0 + 3.0 * k as f64 / (n - 1) as f64 - v * t / 400.0)
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
+    MotionModel {
+        metric: Metric::Jod,
+        scene: "simulated".into(),
+        resolution: [640, 360],
+        refresh_hz: 60.0,
+        stimulus_s: 1.0,
+        viewing: serde_json::Value::Null,
+        ladder,
+        speeds_deg_s: speeds,
+        frame_times_ms: FRAME_TIMES.to_vec(),
+        scores,
+    }
+}
+
+/// [`model`] written to a file of its own in the temporary folder, for `model=PATH`.
+pub fn model_file() -> PathBuf {
+    let path = std::env::temp_dir().join(format!(
+        "steadyray-control-test-motion-{}.json",
+        std::process::id()
+    ));
+    std::fs::write(&path, serde_json::to_string(&model()).unwrap()).unwrap();
+    path
+}

@@ -1,0 +1,209 @@
+//! The perceptual controller on the simulated renderer's fake clock: it chooses the frame
+//! time from the screen speed, holds it, and lets the predictive cost model keep it.
+
+mod common;
+
+use common::{FAST, FRAME_TIMES, model, model_file};
+use steadyray_control::simulate::{Load, LoadProfile, RendererModel, SimRenderer};
+use steadyray_control::{
+    Band, Bounds, Controller, Perceptual, PerceptualParams, Quality, ReportError, Setup,
+};
+
+fn controller() -> Perceptual {
+    let bounds = Bounds::default();
+    let setup = Setup::new(Band::PAPER, bounds, Quality::new(1.0, 4, 1.0)).unwrap();
+    let params = PerceptualParams {
+        model: Some(model()),
+        ..PerceptualParams::default()
+    };
+    Perceptual::new(setup, params).unwrap()
+}
+
+/// A constant view at 640x360: S = 1 takes about 5 ms, S = 12 about 50 ms.
+fn renderer(speeds: Vec<f64>) -> SimRenderer {
+    let load = Load::geometric(0.5, 0.8, 1.0, 1.0);
+    let mut model = RendererModel::corridor(1)
+        .with_profile(LoadProfile::Constant(load))
+        .with_speeds(speeds);
+    model.ns_per_ray = 3.0;
+    model.timer_ms = 0.0;
+    SimRenderer::new(model)
+}
+
+/// One frame of a run.
+struct Step {
+    target_ms: f64,
+    tp_ms: f64,
+    quality: Quality,
+}
+
+fn run(c: &mut Perceptual, speeds: &[f64]) -> Vec<Step> {
+    let mut r = renderer(speeds.to_vec());
+    (0..speeds.len())
+        .map(|i| {
+            let q = c.quality();
+            let report = r.render(i, q);
+            c.observe(&report).unwrap();
+            Step {
+                target_ms: c.target_frame_ms().unwrap(),
+                tp_ms: report.tp_ms,
+                quality: q,
+            }
+        })
+        .collect()
+}
+
+/// The frames at which the target changed.
+fn switches(steps: &[Step]) -> Vec<usize> {
+    (1..steps.len())
+        .filter(|&i| steps[i].target_ms != steps[i - 1].target_ms)
+        .collect()
+}
+
+#[test]
+fn a_still_picture_gets_the_longest_frame_and_a_speed_step_the_shortest_within_frames() {
+    let mut c = controller();
+    let step_at = 120;
+    let mut speeds = vec![0.0; step_at];
+    speeds.extend(std::iter::repeat_n(FAST, 60));
+    let steps = run(&mut c, &speeds);
+    // Still: the longest frame time throughout, spent on S.
+    assert!(
+        steps[..step_at]
+            .iter()
+            .all(|s| s.target_ms == FRAME_TIMES[2]),
+        "{:?}",
+        switches(&steps)
+    );
+    let still = steps[step_at - 1].quality;
+    assert!(still.spp >= 8.0, "{still}");
+    assert!(
+        steps[step_at - 20..step_at]
+            .iter()
+            .all(|s| s.tp_ms < FRAME_TIMES[2])
+    );
+    // The speed step: the shortest frame time within 3 frames, and frames fitting it
+    // within 3 more.
+    let moved = (step_at..speeds.len())
+        .find(|&i| steps[i].target_ms == FRAME_TIMES[0])
+        .expect("the target never moved to the shortest frame time");
+    assert!(
+        moved - step_at <= 3,
+        "moved {} frames after the step",
+        moved - step_at
+    );
+    let fitted = steps[moved + 3..].iter().all(|s| s.tp_ms < FRAME_TIMES[0]);
+    assert!(fitted, "frames do not fit a refresh after the switch");
+    assert_eq!(switches(&steps), [moved]);
+    let fast = steps.last().unwrap().quality;
+    assert!(fast.spp < still.spp / 2.0, "{fast} vs {still}");
+}
+
+#[test]
+fn the_target_follows_the_speed_profile_and_holds_each_change() {
+    let mut c = controller();
+    // Holds, fast turns and a slow pan, 150 frames each, then a speed jittering frame to
+    // frame across the point where two frame times score the same (where a controller
+    // without hysteresis flickers between them).
+    const SEGMENT: usize = 150;
+    let mut speeds = Vec::new();
+    for v in [0.0, FAST, 5.0, FAST, 0.0] {
+        speeds.extend(std::iter::repeat_n(v, SEGMENT));
+    }
+    let jitter_from = speeds.len();
+    speeds.extend((0..300).map(|i| 28.0 + if i % 2 == 0 { 6.0 } else { -6.0 }));
+    let steps = run(&mut c, &speeds);
+    let wanted = [
+        FRAME_TIMES[2],
+        FRAME_TIMES[0],
+        FRAME_TIMES[2],
+        FRAME_TIMES[0],
+        FRAME_TIMES[2],
+    ];
+    for (segment, want) in wanted.into_iter().enumerate() {
+        // A fast turn gets short frames at once; a slow stretch after one gets long frames
+        // once the decided speed has fallen (`fall_ms`) and the hold allows: by 100 frames.
+        let (start, end) = (segment * SEGMENT, (segment + 1) * SEGMENT);
+        let settle = if want == FRAME_TIMES[0] { 3 } else { 100 };
+        let got: Vec<f64> = steps[start + settle.min(start)..end]
+            .iter()
+            .map(|s| s.target_ms)
+            .collect();
+        assert!(got.iter().all(|&t| t == want), "segment {segment}: {got:?}");
+    }
+    // No two changes closer than the hold (display time counted at the target times).
+    let hold_ms = PerceptualParams::default().hold_ms;
+    let changes = switches(&steps);
+    for pair in changes.windows(2) {
+        let held: f64 = steps[pair[0]..pair[1]].iter().map(|s| s.target_ms).sum();
+        assert!(
+            held >= hold_ms,
+            "changes at frames {pair:?}, {held} ms apart"
+        );
+    }
+    // The jitter: one change (to the short frames the faster speed asks for), then none.
+    let jittery = changes.iter().filter(|&&i| i > jitter_from).count();
+    assert!(jittery <= 1, "{changes:?}");
+}
+
+#[test]
+fn a_bad_speed_is_refused_and_changes_nothing() {
+    let mut c = controller();
+    let mut r = renderer(vec![0.0]);
+    for i in 0..10 {
+        let report = r.render(i, c.quality());
+        c.observe(&report).unwrap();
+    }
+    let (q, target) = (c.quality(), c.target_ms());
+    for bad in [f64::NAN, -1.0, f64::INFINITY] {
+        let mut report = r.render(10, q);
+        report.speed_deg_s = bad;
+        let refused = c.observe(&report).unwrap_err();
+        assert!(matches!(refused, ReportError::BadSpeed(_)), "{refused}");
+        assert!(refused.to_string().contains("screen speed"));
+        assert_eq!((c.quality(), c.target_ms()), (q, target));
+    }
+}
+
+#[test]
+fn options_are_checked() {
+    let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+    let needs_model = steadyray_control::from_name("perceptual", setup, "").unwrap_err();
+    assert!(
+        needs_model.to_string().contains("calibrate --motion"),
+        "{needs_model}"
+    );
+    let mut p = PerceptualParams::default();
+    assert!(
+        p.set("ladder", "x.json")
+            .unwrap_err()
+            .to_string()
+            .contains("model=PATH")
+    );
+    p.set("forgetting", "0.9").unwrap();
+    assert_eq!(p.predictive.cost.forgetting, 0.9);
+    let unknown = p.set("colour", "1").unwrap_err().to_string();
+    assert!(
+        unknown.contains("perceptual") && unknown.contains("hold_ms"),
+        "{unknown}"
+    );
+    assert!(
+        p.set("model", "/nonexistent/motion.json")
+            .unwrap_err()
+            .to_string()
+            .contains("cannot read")
+    );
+    p.set("model", &model_file().display().to_string()).unwrap();
+    assert_eq!(
+        p.model.map(|m| m.ladder.points.len()),
+        Some(model().ladder.points.len())
+    );
+    // A hand-over as long as the shortest frame leaves it no band.
+    let params = PerceptualParams {
+        model: Some(model()),
+        hand_over_ms: 16.0,
+        ..PerceptualParams::default()
+    };
+    let err = Perceptual::new(setup, params).unwrap_err().to_string();
+    assert!(err.contains("leaves no band"), "{err}");
+}
