@@ -100,6 +100,15 @@ impl CpuRenderer {
         path.radiance = trace(world, ray, id, max_depth, &mut path).into();
         Ok(path)
     }
+
+    /// Where the ray from `origin` along `dir` first meets a surface: t of the nearest hit at
+    /// `origin + t · dir`, or `None` when it leaves the scene (the primary hit an eye ray
+    /// would shade: what measuring motion on screen reprojects).
+    pub fn first_hit(&self, origin: Vec3, dir: Vec3) -> Result<Option<f32>, RenderError> {
+        let world = self.world.as_ref().ok_or(RenderError::NoScene)?;
+        let ray = ray::Ray::new(origin.into(), Vec3A::from(dir));
+        Ok(world.closest_hit(&ray).map(|hit| hit.t))
+    }
 }
 
 impl Renderer for CpuRenderer {

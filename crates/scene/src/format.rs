@@ -497,6 +497,10 @@ impl Cx<'_> {
                 self.only_keys(label, "a sweep path", &keys, &[])?;
                 Ok(CameraPath::Sweep { frames })
             }
+            "pans" => {
+                self.only_keys(label, "a pans path", &keys, &[])?;
+                Ok(CameraPath::Pans { frames })
+            }
             "orbit" => {
                 self.only_keys(
                     label,
@@ -527,7 +531,9 @@ impl Cx<'_> {
             }
             other => Err(self.invalid(
                 r.kind.span(),
-                format!("path: unknown path type {other:?} (expected \"sweep\" or \"orbit\")"),
+                format!(
+                    "path: unknown path type {other:?} (expected \"sweep\", \"orbit\" or \"pans\")"
+                ),
             )),
         }
     }

@@ -32,6 +32,9 @@ fn write_scene(w: &mut String, s: &Scene) -> std::fmt::Result {
         CameraPath::Sweep { frames } => {
             writeln!(w, "type = \"sweep\"\nframes = {frames}")?;
         }
+        CameraPath::Pans { frames } => {
+            writeln!(w, "type = \"pans\"\nframes = {frames}")?;
+        }
         CameraPath::Orbit {
             center,
             radius,

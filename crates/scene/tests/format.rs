@@ -92,6 +92,19 @@ fn orbit_path() {
 }
 
 #[test]
+fn pans_path() {
+    let text = format!("{MINIMAL}[path]\ntype = \"pans\"\nframes = 360\n");
+    let s = parse_scene(&text, "p.toml", None).unwrap();
+    assert_eq!(s.path, CameraPath::Pans { frames: 360 });
+    assert_eq!(s.path.duration_s(), 12.0);
+    let again = parse_scene(&scene_to_toml(&s), "again.toml", None).unwrap();
+    assert_eq!(again.path, s.path);
+    let extra = format!("{MINIMAL}[path]\ntype = \"pans\"\nradius = 3\n");
+    let e = parse_scene(&extra, "p.toml", None).unwrap_err().to_string();
+    assert!(e.contains("radius"), "{e}");
+}
+
+#[test]
 fn hand_made_scenes_round_trip() {
     // Odd floats, odd names, every material and shape kind (meshes in tests/meshes.rs).
     let text = r#"name = "q\"uote\\ \u00e9"

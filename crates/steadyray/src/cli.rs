@@ -91,6 +91,35 @@ pub struct SceneArgs {
     /// Renderer backend.
     #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
     pub backend: BackendChoice,
+    /// Replaces the scene's camera path (keeping its frame count), from the scene camera's
+    /// eye and pitch.
+    #[arg(long, value_enum)]
+    pub path: Option<PathChoice>,
+}
+
+/// A camera path that `--path` puts in place of the scene's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PathChoice {
+    /// The paper's sweep: one full turn of the yaw at constant speed.
+    Sweep,
+    /// Holds, slow pans and fast turns (one full turn in 12 s): motion on screen from 0 to
+    /// about 80 degrees of visual angle per second (docs/scene-format.md).
+    Pans,
+}
+
+impl SceneArgs {
+    /// Loads the scene and puts `--path` in place of its camera path.
+    pub fn load(&self) -> Result<steadyray_scene::Scene, steadyray_scene::SceneError> {
+        use steadyray_scene::CameraPath;
+        let mut scene = steadyray_scene::load_scene(&self.scene)?;
+        let frames = scene.path.frames();
+        match self.path {
+            Some(PathChoice::Sweep) => scene.path = CameraPath::Sweep { frames },
+            Some(PathChoice::Pans) => scene.path = CameraPath::Pans { frames },
+            None => {}
+        }
+        Ok(scene)
+    }
 }
 
 #[derive(Debug, Args)]

@@ -170,7 +170,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             "corridor (simulated)".into(),
         )
     } else {
-        let scene = steadyray_scene::load_scene(&args.scene.scene)?;
+        let scene = args.scene.load()?;
         let mut renderer = create_renderer(args.scene.backend)?;
         renderer.load_scene(&scene)?;
         let info = renderer.info();

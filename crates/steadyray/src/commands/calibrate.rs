@@ -191,7 +191,7 @@ pub fn calibrate(
 
 /// Runs the calibration, prints the front and writes the ladder.
 pub fn run(args: &CalibrateArgs) -> Result<()> {
-    let scene = steadyray_scene::load_scene(&args.scene.scene)?;
+    let scene = args.scene.load()?;
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
     let plan = Plan {

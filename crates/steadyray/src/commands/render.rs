@@ -10,7 +10,7 @@ use steadyray_scene::Camera;
 
 /// Renders the asked-for frame, writes the image, and prints the frame's statistics.
 pub fn run(args: &RenderArgs) -> Result<()> {
-    let scene = steadyray_scene::load_scene(&args.scene.scene)?;
+    let scene = args.scene.load()?;
     let settings = RenderSettings {
         width: args.width,
         height: args.height,

@@ -156,7 +156,7 @@ impl Plan {
                     .unwrap_or((&args.controller, ""));
                 let control = LiveControl::new(name.trim(), options.trim(), band, bounds, start)
                     .with_context(|| format!("--controller {}", args.controller))?;
-                let scene = steadyray_scene::load_scene(&args.scene.scene)?;
+                let scene = args.scene.load()?;
                 (
                     Content::Live(Box::new(LiveSetup { scene, control })),
                     DEFAULT_WINDOW,
