@@ -21,13 +21,19 @@ fn bunny() -> PathBuf {
 /// `steadyray raybench` at 32x18, one repetition, on `backend`, with `adapter` as
 /// `STEADYRAY_ADAPTER` when given.
 fn raybench(backend: &str, adapter: Option<&str>) -> Output {
+    raybench_with(backend, adapter, &[])
+}
+
+/// [`raybench`] with `extra` arguments.
+fn raybench_with(backend: &str, adapter: Option<&str>, extra: &[&std::ffi::OsStr]) -> Output {
     let mut command = Command::new(BIN);
     command
         .arg("raybench")
         .args(["--backend", backend, "--camera", CAMERA])
         .args(["--width", "32", "--height", "18", "--reps", "1"])
         .arg("--mesh")
-        .arg(bunny());
+        .arg(bunny())
+        .args(extra);
     if let Some(name) = adapter {
         command.env("STEADYRAY_ADAPTER", name);
     }
@@ -129,4 +135,80 @@ fn a_missing_adapter_is_a_clear_error() {
         "{stderr}"
     );
     assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+/// `--dump-rays` writes the triangles and both ray sets as documented in
+/// `commands/ray_dump.rs`: as many rays as the report counts, primary rays from the eye on
+/// (T_MIN, ∞), and hits whose fractions are the report's and whose t puts the hit point on
+/// the triangle hit. A folder that does not exist is a clear error.
+#[test]
+fn dumped_rays_are_the_rays_traced() {
+    let dir = std::env::temp_dir().join(format!("steadyray-raybench-dump-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("rays.bin");
+    let output = raybench_with("cpu", None, &["--dump-rays".as_ref(), path.as_os_str()]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let r = report(&output);
+    let bytes = std::fs::read(&path).unwrap();
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+    let float = |at: usize| f32::from_bits(word(at));
+    assert_eq!(&bytes[..8], b"SRAYDUMP");
+    assert_eq!(word(8), 1, "version");
+    let triangles = word(12) as usize;
+    assert_eq!(triangles as u64, r["triangles"].as_u64().unwrap());
+    assert_eq!(word(16), 2, "two ray sets");
+    let corner = |tri: usize, k: usize| {
+        let at = 24 + 36 * tri + 12 * k;
+        [float(at), float(at + 4), float(at + 8)]
+    };
+    let mut at = 24 + 36 * triangles;
+    for name in ["primary", "bounce"] {
+        assert_eq!(&bytes[at..at + name.len()], name.as_bytes());
+        let count = u64::from_le_bytes(bytes[at + 16..at + 24].try_into().unwrap()) as usize;
+        assert_eq!(count as u64, r[format!("{name}_rays")].as_u64().unwrap());
+        at += 24;
+        let mut hits = 0;
+        for ray in 0..count {
+            let f = |k: usize| float(at + 40 * ray + 4 * k);
+            let (origin, dir) = ([f(0), f(1), f(2)], [f(3), f(4), f(5)]);
+            assert_eq!((f(6), f(7)), (1e-4, f32::INFINITY), "{name} ray {ray}");
+            if name == "primary" {
+                assert_eq!(origin, [0.0869666, 0.110154, 0.1782621]);
+            }
+            let (t, tri) = (f(8), word(at + 40 * ray + 36));
+            if tri == u32::MAX {
+                assert!(t.is_nan(), "{name} ray {ray}: a miss has t NaN");
+                continue;
+            }
+            hits += 1;
+            let hit: [f32; 3] = std::array::from_fn(|k| origin[k] + t * dir[k]);
+            let [a, b, c] = [0, 1, 2].map(|k| corner(tri as usize, k));
+            for k in 0..3 {
+                let (lo, hi) = (a[k].min(b[k]).min(c[k]), a[k].max(b[k]).max(c[k]));
+                assert!(
+                    (lo - 1e-5..=hi + 1e-5).contains(&hit[k]),
+                    "{name} ray {ray}: hit point off its triangle"
+                );
+            }
+        }
+        let fraction = hits as f64 / count as f64;
+        assert_eq!(
+            fraction,
+            r[format!("{name}_hit_fraction")].as_f64().unwrap()
+        );
+        at += 40 * count;
+    }
+    assert_eq!(at, bytes.len());
+
+    let nowhere = dir.join("no such folder").join("rays.bin");
+    let output = raybench_with("cpu", None, &["--dump-rays".as_ref(), nowhere.as_os_str()]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(output.stdout.is_empty());
+    assert!(stderr.contains("cannot write the ray dump"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -8,11 +8,16 @@
 //! count and the traversal's SIMD form (CPU) or the device (GPU), how the time was taken
 //! and the camera.
 //!
+//! `--dump-rays FILE` also writes the triangles and both ray sets, with their t ranges and
+//! the hits found, for tracing the same rays elsewhere (`scripts/embree/` traces them with
+//! Embree; the format is in [`super::ray_dump`]).
+//!
 //! On the GPU (`--backend gpu`, [`GpuRayCaster`]) the mesh is uploaded once, primary rays
 //! are generated in the kernel, bounce rays are made on the host from the primary hits and
 //! uploaded, and each repetition is one dispatch timed by GPU timestamps (the kernel alone:
 //! no upload or readback), after an untimed warm-up.
 
+use super::ray_dump::{self, DumpRay, RaySet};
 use crate::backend::requested_gpu_options;
 use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
@@ -72,6 +77,10 @@ pub struct RaybenchArgs {
     /// triangle count at a fixed view (at most 6).
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=6))]
     pub subdivide: u32,
+    /// Also write the triangles and the exact rays traced (both sets, with their t ranges
+    /// and closest hits) to this file, in the binary format `scripts/embree/` reads.
+    #[arg(long)]
+    pub dump_rays: Option<PathBuf>,
 }
 
 /// `tris` with each triangle split into four at its edge midpoints, `times` times over.
@@ -187,6 +196,9 @@ struct Report {
     camera: CameraSpec,
 }
 
+/// The end of every ray's t range: rays hit on (T_MIN, T_MAX).
+const T_MAX: f32 = f32::INFINITY;
+
 /// Traces every cast `reps` times; returns rays per second of each repetition.
 fn trace_all(pool: &rayon::ThreadPool, bvh: &Bvh, casts: &mut [Cast], reps: u32) -> Vec<f64> {
     (0..reps)
@@ -195,7 +207,7 @@ fn trace_all(pool: &rayon::ThreadPool, bvh: &Bvh, casts: &mut [Cast], reps: u32)
             pool.install(|| {
                 casts.par_chunks_mut(1024).for_each(|chunk| {
                     for c in chunk {
-                        c.hit = bvh.closest(c.origin, c.dir, f32::INFINITY);
+                        c.hit = bvh.closest(c.origin, c.dir, T_MAX);
                     }
                 })
             });
@@ -372,6 +384,26 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
         bounce_rays_per_s_reps: bounce_rates,
         camera: spec,
     };
+    if let Some(path) = &args.dump_rays {
+        let records = |casts: &[Cast]| -> Vec<DumpRay> {
+            casts
+                .iter()
+                .map(|c| DumpRay::new(c.origin, c.dir, (steadyray_accel::T_MIN, T_MAX), c.hit))
+                .collect()
+        };
+        let (primary, bounce) = (records(&primary), records(&bounce));
+        let sets = [
+            RaySet {
+                name: "primary",
+                rays: &primary,
+            },
+            RaySet {
+                name: "bounce",
+                rays: &bounce,
+            },
+        ];
+        ray_dump::write(path, &corners, &sets)?;
+    }
     println!("{}", serde_json::to_string(&report)?);
     Ok(())
 }
