@@ -20,6 +20,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 use steadyray_control::{Band, FrameReport};
+use steadyray_display::ViewingSetup;
+use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_render::{FrameStats, RenderSettings, TimingSource};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{GpuOptions, GpuRenderer, surface_adapter};
@@ -121,6 +123,10 @@ struct Live {
     scene_time_s: f64,
     /// The scene path's duration, s.
     scene_duration_s: f64,
+    /// Measures each frame's motion on screen for the controller and the HUD.
+    motion: MotionProbe,
+    /// The camera of the last frame and when it was rendered (window time, s).
+    last_shot: Option<Shot>,
 }
 
 /// Playback's moving parts.
@@ -346,9 +352,16 @@ impl Running {
                     LiveRenderer::Cpu { .. } => (false, false, "CPU wall clock"),
                 };
                 eprintln!("steadyray view: {device_label}");
+                let motion = MotionProbe::new(
+                    &scene,
+                    (size.0.max(1), size.1.max(1)),
+                    ViewingSetup::standard_fhd(),
+                )?;
                 let live = Live {
                     renderer,
                     control,
+                    motion,
+                    last_shot: None,
                     camera: FlyCamera::from_camera(&scene.camera),
                     sweep: Sweep {
                         on: plan.sweep,
@@ -558,7 +571,7 @@ impl Running {
         let paused = self.paused;
         let look = self.input.take_look();
         let movement = self.input.movement();
-        let (image, sample, playback) = match &mut self.mode {
+        let (image, sample, playback, (speed_deg_s, target_ms)) = match &mut self.mode {
             Mode::Live(live) => {
                 if !paused {
                     live.camera.look(look);
@@ -601,13 +614,22 @@ impl Running {
                 } else {
                     render_ms
                 };
+                // The motion on screen since the last frame (outside the render's time).
+                let shot = Shot {
+                    camera: live.camera.camera(),
+                    time_s: t_s,
+                };
+                let motion = match live.last_shot.replace(shot) {
+                    Some(before) => live.motion.measure(&before, &shot)?,
+                    None => ScreenSpeed::default(),
+                };
                 let report = FrameReport {
                     tp_ms: render_ms,
                     rays_per_depth: stats.rays.per_depth.clone(),
                     shadow_rays: stats.rays.shadow,
                     pixels: settings.pixels(),
                     quality: q,
-                    speed_deg_s: 0.0,
+                    speed_deg_s: motion.mean_deg_s,
                 };
                 if let Err(e) = live.control.observe(&report) {
                     log::warn!("the controller refused a frame report: {e}");
@@ -620,7 +642,8 @@ impl Running {
                     rays: stats.rays.total(),
                 };
                 let image = live.renderer.image(&self.device, &self.queue)?;
-                (image, Some(sample), None)
+                let motion_facts = (Some(motion.mean_deg_s), live.control.target_frame_ms());
+                (image, Some(sample), None, motion_facts)
             }
             Mode::Playback(p) => {
                 if !paused {
@@ -646,7 +669,12 @@ impl Running {
                         rays: 0,
                     });
                 }
-                (p.upload.image(), sample, Some((i, p.recording.len())))
+                (
+                    p.upload.image(),
+                    sample,
+                    Some((i, p.recording.len())),
+                    (None, None),
+                )
             }
         };
         let last_size = (image.width, image.height);
@@ -666,6 +694,8 @@ impl Running {
                     frame_size: last_size,
                     playback,
                     message: self.message.as_deref(),
+                    speed_deg_s,
+                    target_ms,
                 },
             },
         );

@@ -73,6 +73,10 @@ pub struct HudFacts<'a> {
     pub playback: Option<(usize, usize)>,
     /// A message to show (e.g. a refused change).
     pub message: Option<&'a str>,
+    /// The last frame's motion on screen, degrees of visual angle per second (live only).
+    pub speed_deg_s: Option<f64>,
+    /// The frame time the controller chose, ms (`perceptual` only).
+    pub target_ms: Option<f64>,
 }
 
 /// Draws the HUD; returns its area in points.
@@ -194,6 +198,18 @@ fn figures(ui: &mut egui::Ui, facts: &HudFacts<'_>) {
                     h.rays_per_s(FIGURES_S)
                         .map_or("–".into(), |r| format!("{:.1} M", r / 1e6)),
                 );
+                ui.end_row();
+                ui.label("motion");
+                ui.label(
+                    facts
+                        .speed_deg_s
+                        .map_or("–".into(), |v| format!("{v:.1} °/s on screen")),
+                );
+                if let Some(target) = facts.target_ms {
+                    ui.end_row();
+                    ui.label("target");
+                    ui.label(format!("{target:.1} ms ({:.0} fps)", 1e3 / target));
+                }
             }
         }
         ui.end_row();
@@ -321,6 +337,8 @@ mod tests {
             frame_size: (160, 90),
             playback: None,
             message: Some("refused"),
+            speed_deg_s: Some(12.5),
+            target_ms: Some(1000.0 / 30.0),
         };
         let input = egui::RawInput {
             screen_rect: Some(Rect::from_min_size(Pos2::ZERO, vec2(640.0, 480.0))),

@@ -49,6 +49,11 @@ impl LiveControl {
         self.bounds
     }
 
+    /// The frame time the controller has chosen (`perceptual`), ms.
+    pub fn target_frame_ms(&self) -> Option<f64> {
+        self.controller.target_frame_ms()
+    }
+
     /// The quality of the next frame.
     pub fn quality(&self) -> Quality {
         self.controller.quality()

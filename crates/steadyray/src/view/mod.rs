@@ -33,8 +33,9 @@ use steadyray_scene::Scene;
 pub struct ViewArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// The controller at start (`fixed`, `step`, `hysteresis`, `predictive`), optionally
-    /// with options after a colon, e.g. `step:knob=both`. The HUD switches it live.
+    /// The controller at start (`fixed`, `step`, `hysteresis`, `predictive`, `perceptual`),
+    /// optionally with options after a colon, e.g. `step:knob=both` or
+    /// `perceptual:model=motion.json`. The HUD switches it live.
     #[arg(long, default_value = "predictive")]
     pub controller: String,
     /// Lower edge of the frame-time band, ms.
