@@ -88,18 +88,24 @@ pub fn from_name(
 ) -> Result<Box<dyn Controller>, ConfigError> {
     let options = parse_options(options)?;
     let name = name.trim();
-    let check_none = |controller: &'static str| match options.first() {
-        Some((key, _)) => Err(ConfigError::UnknownOption {
-            controller,
-            key: key.clone(),
-            expected: "no options",
-        }),
-        None => Ok(()),
-    };
     Ok(match name {
         "fixed" => {
-            check_none("fixed")?;
-            Box::new(Fixed::new(setup)?)
+            let mut start = setup.start;
+            for (key, value) in &options {
+                match key.as_str() {
+                    "spp" => start.spp = parse_option(key, value, |_| Ok(()))?,
+                    "depth" => start.depth = parse_option(key, value, |_| Ok(()))?,
+                    "scale" => start.scale = parse_option(key, value, |_| Ok(()))?,
+                    _ => {
+                        return Err(ConfigError::UnknownOption {
+                            controller: "fixed",
+                            key: key.clone(),
+                            expected: "spp, depth, scale (the quality it holds)",
+                        });
+                    }
+                }
+            }
+            Box::new(Fixed::new(Setup::new(setup.band, setup.bounds, start)?)?)
         }
         "step" => {
             let mut p = StepParams::default();

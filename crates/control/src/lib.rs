@@ -21,7 +21,8 @@
 //!
 //! # Controllers ([`from_name`] builds one by name, with `key=value` options)
 //!
-//! - `fixed` ([`Fixed`]): no control; the starting quality every frame. No options.
+//! - `fixed` ([`Fixed`]): no control; the starting quality every frame. `spp`, `depth` and
+//!   `scale` set another quality to hold (inside the bounds), e.g. `spp=4 depth=16`.
 //! - `step` ([`Step`]): the paper's rule. Tp > Tmax: one step down; Tp < Tmin: one step up;
 //!   in the band: nothing. `knob=depth` (default) | `spp` | `both` (cuts S first down to its
 //!   minimum, then R; raises R first up to its maximum, then S). Steps are ±1 on whole

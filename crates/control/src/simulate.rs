@@ -332,8 +332,15 @@ impl SimRenderer {
 
     /// "Renders" frame `frame` at quality `q`: the report a real renderer would give.
     pub fn render(&mut self, frame: usize, q: Quality) -> FrameReport {
+        let load = self.model.profile.load(frame);
+        self.render_load(frame, &load, q)
+    }
+
+    /// "Renders" the `frame`-th frame of a run (spikes listed by frame still apply) with the
+    /// view's cost given by `load` instead of the profile: a path followed in time rather than
+    /// frame by frame (e.g. [`corridor_load`] at the yaw of a time).
+    pub fn render_load(&mut self, frame: usize, load: &Load, q: Quality) -> FrameReport {
         let m = &self.model;
-        let load = m.profile.load(frame);
         let (rays_per_depth, shadow_rays) = load.rays(m.eye_rays(&q), q.depth);
         let total = rays_per_depth.iter().sum::<u64>() + shadow_rays;
         let ideal = m.fixed_ms + m.ns_per_ray * 1e-6 * total as f64 * load.cost_factor;

@@ -51,6 +51,16 @@ fn options_are_parsed_and_checked() {
         err("fixed", "knob=depth"),
         ConfigError::UnknownOption { .. }
     ));
+    let fixed = from_name("fixed", setup(), "spp=4 depth=3 scale=0.5").unwrap();
+    assert_eq!(fixed.quality(), Quality::new(4.0, 3, 0.5));
+    assert!(matches!(
+        err("fixed", "spp=1000"),
+        ConfigError::StartOutOfBounds { .. }
+    ));
+    assert!(matches!(
+        err("fixed", "depth=two"),
+        ConfigError::BadOption { .. }
+    ));
     assert!(matches!(
         err("hysteresis", "up_after=-1"),
         ConfigError::BadOption { .. }

@@ -47,11 +47,21 @@ impl FlipMap {
 /// The LDR-FLIP error map of `test` against `reference` (both sRGB 8-bit, same size), at
 /// [`PIXELS_PER_DEGREE`]. Its [`FlipMap::mean`] is the figure steadyray reports.
 pub fn flip(reference: &Rgb8Image, test: &Rgb8Image) -> Result<FlipMap, SizeMismatch> {
+    flip_at(reference, test, PIXELS_PER_DEGREE)
+}
+
+/// [`flip`] under another viewing condition: `pixels_per_degree` of the images as shown (e.g.
+/// a frame filling a given display at a given distance).
+pub fn flip_at(
+    reference: &Rgb8Image,
+    test: &Rgb8Image,
+    pixels_per_degree: f32,
+) -> Result<FlipMap, SizeMismatch> {
     reference.check_same_size(test)?;
     let (w, h) = (reference.width(), reference.height());
     let r = nv_flip::FlipImageRgb8::with_data(w, h, reference.as_bytes());
     let t = nv_flip::FlipImageRgb8::with_data(w, h, test.as_bytes());
-    let map = nv_flip::flip(r, t, PIXELS_PER_DEGREE);
+    let map = nv_flip::flip(r, t, pixels_per_degree);
     Ok(FlipMap {
         width: w,
         height: h,

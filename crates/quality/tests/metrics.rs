@@ -1,6 +1,6 @@
 //! The metrics against known values.
 
-use steadyray_quality::{Rgb8Image, compare, flip, psnr, ssim};
+use steadyray_quality::{Rgb8Image, compare, flip, flip_at, psnr, ssim};
 
 /// A 64×48 test card: integer patterns in every channel.
 fn card() -> Rgb8Image {
@@ -45,6 +45,24 @@ fn flip_of_an_image_against_itself_is_zero() {
 fn flip_of_a_known_distortion_matches_the_reference_implementation() {
     let mean = flip(&card(), &distorted()).unwrap().mean();
     assert!((mean - 0.160_148_68).abs() < 1e-3, "mean FLIP {mean}");
+}
+
+/// Pixels seen larger (fewer per degree: a small image filling a display) show the same noise
+/// more; seen from farther away (more per degree) less. At FLIP's default the result is
+/// [`flip`]'s.
+#[test]
+fn flip_depends_on_the_viewing_condition() {
+    let (c, d) = (card(), distorted());
+    let default = flip_at(&c, &d, steadyray_quality::flip::PIXELS_PER_DEGREE).unwrap();
+    assert_eq!(default.mean(), flip(&c, &d).unwrap().mean());
+    let large = flip_at(&c, &d, 12.6).unwrap().mean();
+    let far = flip_at(&c, &d, 200.0).unwrap().mean();
+    assert!(
+        large > 1.5 * default.mean(),
+        "{large} vs {}",
+        default.mean()
+    );
+    assert!(far < 0.9 * default.mean(), "{far} vs {}", default.mean());
 }
 
 #[test]
