@@ -98,9 +98,10 @@ impl Display {
     }
 
     /// When the next frame would become visible if it completed `busy_ms` after its start
-    /// (render and hand-over): the prediction a frame can render its world time from.
+    /// (render and hand-over): the prediction a frame can render its world time from. A frame
+    /// takes some time, so even `busy_ms` = 0 predicts a time after the start.
     pub fn visible_after(&self, busy_ms: f64) -> f64 {
-        self.visible_at(self.next_start_ms() + busy_ms.max(0.0))
+        self.visible_at(self.next_start_ms() + busy_ms.max(2.0 * TIME_EPS_MS))
     }
 
     /// When the next frame becomes visible if it completes at `complete_ms`.

@@ -34,6 +34,9 @@ pub enum Command {
     /// Ray-casting throughput of the triangle BVH on a mesh: primary and diffuse-bounce rays
     /// per second, as one JSON line.
     Raybench(crate::commands::raybench::RaybenchArgs),
+    /// Bring ColorVideoVDP's JOD scores (scripts/jod/) into a real-clock bench's reports:
+    /// `merge` into summary.json and table.md, `plot` JOD against displayed fps.
+    Jod(crate::commands::jod::JodArgs),
 }
 
 /// Which renderer backend to use.
@@ -162,4 +165,60 @@ pub struct RenderArgs {
     /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance).
     #[arg(short = 'o', long = "output", default_value = "render.png")]
     pub output: PathBuf,
+}
+
+/// How time runs (`spec/display.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ClockChoice {
+    /// The paper's protocol: frame k of N shows the path at k/N of its length, whatever its
+    /// time.
+    Frames,
+    /// Display time: the path is a function of time and each frame shows the world at its
+    /// predicted display time, so a faster controller shows more frames of the same motion.
+    Real,
+}
+
+/// On or off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Switch {
+    On,
+    Off,
+}
+
+/// The display model's settings (`--clock real`).
+#[derive(Debug, Args)]
+pub struct DisplayArgs {
+    /// With --clock real: the display's refresh rate, Hz (default 60; with --vrr, the
+    /// range's maximum). The screen is sampled at this rate for --video and displayed FLIP.
+    #[arg(long, allow_negative_numbers = true)]
+    pub refresh: Option<f64>,
+    /// With --clock real: vsync `on` (a frame shows at the first refresh after it is
+    /// complete; the default) or `off` (at once).
+    #[arg(long, value_enum)]
+    pub vsync: Option<Switch>,
+    /// With --clock real: variable refresh within MIN-MAX Hz (e.g. 48-144) instead of a
+    /// fixed refresh.
+    #[arg(long, value_name = "MIN-MAX", conflicts_with = "vsync")]
+    pub vrr: Option<steadyray_display::VrrRange>,
+}
+
+impl DisplayArgs {
+    /// Whether any display setting was given.
+    pub fn is_given(&self) -> bool {
+        self.refresh.is_some() || self.vsync.is_some() || self.vrr.is_some()
+    }
+
+    /// The checked display.
+    pub fn config(
+        &self,
+    ) -> Result<steadyray_display::DisplayConfig, steadyray_display::DisplayError> {
+        use steadyray_display::{DisplayConfig, SyncMode};
+        let sync = match (self.vrr, self.vsync) {
+            (Some(range), _) => SyncMode::Vrr(range),
+            (None, Some(Switch::Off)) => SyncMode::Off,
+            (None, _) => SyncMode::Vsync,
+        };
+        let refresh = self.refresh.unwrap_or(self.vrr.map_or(60.0, |r| r.max_hz));
+        DisplayConfig::new(refresh, sync)
+    }
 }

@@ -26,6 +26,7 @@ fn main() -> ExitCode {
         Command::Calibrate(args) => commands::calibrate::run(args),
         Command::View(args) => view::run(args),
         Command::Raybench(args) => commands::raybench::run(args),
+        Command::Jod(args) => commands::jod::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -2,7 +2,7 @@
 
 use super::quality::{References, flip_stats, shown};
 use super::record::{ControllerRun, FrameRow};
-use super::source::FrameSource;
+use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use steadyray_control::{Band, Bounds, Controller, FrameRecord, Quality, summarize};
@@ -16,6 +16,13 @@ pub struct Sweep {
     pub warmup: u32,
     pub band: Band,
     pub bounds: Bounds,
+}
+
+impl Sweep {
+    /// Frame `k` of the sweep on the camera path.
+    pub fn at(&self, k: u32) -> PathPoint {
+        PathPoint::Frame { k, n: self.frames }
+    }
 }
 
 /// What a run keeps besides the timings: FLIP of the sampled frames, the delivered frames.
@@ -42,7 +49,7 @@ pub fn run_controller(
     controller.reset();
     progress.set_message(name.to_string());
     for _ in 0..sweep.warmup {
-        let m = source.frame(0, sweep.frames, controller.quality())?;
+        let m = source.frame(sweep.at(0), controller.quality())?;
         // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
         let _ = controller.observe(&m.report);
         progress.inc(1);
@@ -54,7 +61,7 @@ pub fn run_controller(
     for k in 0..sweep.frames {
         let q = controller.quality();
         let m = source
-            .frame(k, sweep.frames, q)
+            .frame(sweep.at(k), q)
             .with_context(|| format!("{name}: frame {k} at {q} failed"))?;
         let rays = m.report.total_rays();
         let tp_ms = m.report.tp_ms;
@@ -79,17 +86,10 @@ pub fn run_controller(
                 )?);
             }
         }
+        let t_s = source.path_duration_s() * f64::from(k) / f64::from(sweep.frames);
         rows.push(FrameRow {
-            frame: k,
-            angle: m.angle,
-            spp: q.spp,
-            depth: q.depth,
-            scale: q.scale,
-            tp_ms,
-            wall_ms: m.wall_ms,
-            rays,
-            in_band: sweep.band.contains(tp_ms),
             flip,
+            ..FrameRow::measured(k, t_s, &m, sweep.band)
         });
         records.push(FrameRecord {
             frame: k as usize,
@@ -113,6 +113,7 @@ pub fn run_controller(
         summary,
         flip: flip_stats(&flips),
         recorded,
+        display: None,
     })
 }
 
@@ -166,7 +167,7 @@ pub fn search_best_fixed(
                 let over_limit = frames.len() - best_in;
                 let (mut in_band, mut over) = (0, 0);
                 for &k in &frames {
-                    let m = source.frame(k, sweep.frames, q)?;
+                    let m = source.frame(sweep.at(k), q)?;
                     progress.inc(1);
                     if sweep.band.contains(m.report.tp_ms) {
                         in_band += 1;

@@ -6,27 +6,41 @@
 //! `--quality` also measures what each controller delivers: every `--every`-th frame's FLIP
 //! against a reference of the same view (rendered before the runs, [`quality`]);
 //! `--record DIR` keeps every delivered frame for playback ([`playback`]).
+//!
+//! `--clock real` runs each controller for a span of display time on the display model
+//! instead ([`real_clock`], `spec/display.md`): the table, `summary.json` and `table.md` then
+//! say what the viewer saw (frames shown per second, repeats, pacing, latency); `--quality`
+//! measures the screen against the world at sampled refreshes ([`displayed`]) and `--video
+//! DIR` writes the screen and the reference at every refresh ([`video`]).
 
+mod displayed;
 mod experiment;
 mod machine;
 mod playback;
-mod plot;
+pub mod plot;
 pub mod quality;
+mod real_clock;
 mod record;
-mod report;
+pub mod report;
 mod source;
+mod video;
 
 use crate::backend::create_renderer;
-use crate::cli::{BoundsArgs, SceneArgs};
+use crate::cli::{BoundsArgs, ClockChoice, DisplayArgs, SceneArgs};
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use displayed::{TimedReferences, screen_samples, time_key};
 use experiment::{Capture, Sweep, run_controller, search_best_fixed};
 use indicatif::{ProgressBar, ProgressStyle};
+use real_clock::{Keep, RealSweep, run_controller_real};
 use record::ControllerRun;
-use report::{RunContext, quality_label};
+use report::{RealContext, RunContext, quality_label};
 use source::{FrameSource, RendererSource};
+use std::collections::BTreeSet;
 use std::path::PathBuf;
-use steadyray_control::{Band, CONTROLLER_NAMES, Quality, Setup, from_name};
+use steadyray_control::{Band, CONTROLLER_NAMES, Controller, Quality, Setup, from_name};
+use steadyray_display::model::refresh_at_or_after;
+use steadyray_display::{RealClock, ViewingSetup};
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -45,8 +59,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 20.0)]
     pub tmax: f64,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
-    /// `step:knob=both` or `predictive:order=depth,spp`. `fixed` also adds the best fixed
-    /// quality (unless --no-best-fixed).
+    /// `step:knob=both`, `predictive:order=depth,spp` or `fixed:spp=4 depth=16`. The first
+    /// `fixed` also adds the best fixed quality (unless --no-best-fixed).
     #[arg(
         long,
         default_value = "fixed,step,step:knob=both,hysteresis,predictive"
@@ -81,12 +95,14 @@ pub struct BenchArgs {
     /// summary.json and the table, a flip column to frames.csv and a quality row to the plot.
     #[arg(long)]
     pub quality: bool,
-    /// With --quality: measure frames 0, K, 2K, ... of the sweep.
+    /// With --quality: measure frames 0, K, 2K, ... of the sweep (with --clock real: the
+    /// screen at refreshes 0, K, 2K, ...).
     #[arg(long, default_value_t = 24, value_name = "K")]
     pub every: u32,
-    /// With --quality: the reference's eye rays per pixel S (at full scale).
-    #[arg(long, default_value_t = 256.0)]
-    pub reference_spp: f32,
+    /// With --quality or --video: the reference's eye rays per pixel S, at full scale
+    /// (default 256; with --clock real, where a reference is rendered per refresh, 16).
+    #[arg(long)]
+    pub reference_spp: Option<f32>,
     /// With --quality: the reference's reflection depth R.
     #[arg(long, default_value_t = 16)]
     pub reference_depth: u32,
@@ -95,6 +111,54 @@ pub struct BenchArgs {
     /// sub-folder of DIR per controller.
     #[arg(long, value_name = "DIR")]
     pub record: Option<PathBuf>,
+    /// How time runs: `frames` (the paper's protocol: frame k of N shows the path at k/N of
+    /// its length) or `real` (display time on the display model, spec/display.md: each frame
+    /// renders the world at its predicted display time; a faster controller renders more).
+    #[arg(long, value_enum, default_value_t = ClockChoice::Frames)]
+    pub clock: ClockChoice,
+    /// With --clock real: seconds of display time per run (default: the path's length, its
+    /// frames at 60 per second).
+    #[arg(long, allow_negative_numbers = true)]
+    pub duration: Option<f64>,
+    #[command(flatten)]
+    pub display: DisplayArgs,
+    /// With --clock real: write the screen of every run and the reference at every refresh
+    /// into DIR (lossless PNG sequences, timings.csv, a video each, video.json) for the JOD
+    /// tool (scripts/jod/). References already in DIR/reference for the same set-up are
+    /// reused.
+    #[arg(long, value_name = "DIR")]
+    pub video: Option<PathBuf>,
+}
+
+/// The real clock's settings, checked.
+struct RealOptions {
+    display: steadyray_display::DisplayConfig,
+}
+
+/// Checks the clock options: the display's under `--clock real`, none of them under the
+/// frame clock, and `--record` only under the frame clock.
+fn real_options(args: &BenchArgs) -> Result<Option<RealOptions>> {
+    match args.clock {
+        ClockChoice::Frames => {
+            if args.duration.is_some() || args.display.is_given() || args.video.is_some() {
+                bail!("--duration, --refresh, --vsync, --vrr and --video need --clock real");
+            }
+            Ok(None)
+        }
+        ClockChoice::Real => {
+            if args.record.is_some() {
+                bail!("--record keeps frames of the frame clock; with --clock real use --video");
+            }
+            if args.simulate && (args.quality || args.video.is_some()) {
+                bail!(
+                    "--quality and --video need a renderer that produces images (not --simulate)"
+                );
+            }
+            Ok(Some(RealOptions {
+                display: args.display.config()?,
+            }))
+        }
+    }
 }
 
 /// One controller to run, as named on the command line.
@@ -158,11 +222,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }
+    let real = real_options(args)?;
     let specs = parse_controllers(&args.controllers)?;
     let mut controllers = specs
         .iter()
         .map(|s| Ok((s, from_name(&s.name, setup, &s.options)?)))
         .collect::<Result<Vec<_>>>()?;
+    if let Some(dir) = &args.video {
+        video::prepare(dir)?;
+    }
 
     let (mut source, scene_name): (Box<dyn FrameSource>, String) = if args.simulate {
         (
@@ -184,44 +252,96 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         };
         (Box::new(source), name)
     };
+    let real = match real {
+        Some(options) => {
+            let duration_s = args.duration.unwrap_or_else(|| source.path_duration_s());
+            // Checks the duration before any run.
+            RealClock::new(options.display, duration_s)?;
+            Some(RealSweep {
+                display: options.display,
+                duration_s,
+                warmup: args.warmup,
+                band,
+                bounds,
+            })
+        }
+        None => None,
+    };
     let (backend, device) = source.describe();
     let (width, height) = source.resolution();
-    eprintln!(
-        "bench: {scene_name} at {width}x{height} on {backend} ({device}), band [{}, {}] ms, {} frames",
-        band.tmin_ms(),
-        band.tmax_ms(),
-        args.frames
-    );
+    match &real {
+        None => eprintln!(
+            "bench: {scene_name} at {width}x{height} on {backend} ({device}), band [{}, {}] ms, {} frames",
+            band.tmin_ms(),
+            band.tmax_ms(),
+            args.frames
+        ),
+        Some(r) => eprintln!(
+            "bench: {scene_name} at {width}x{height} on {backend} ({device}), band [{}, {}] ms, clock real: {} s on {}",
+            band.tmin_ms(),
+            band.tmax_ms(),
+            r.duration_s,
+            r.display
+        ),
+    }
     let sweep = Sweep {
         frames: args.frames,
         warmup: args.warmup,
         band,
         bounds,
     };
-    let progress = ProgressBar::new((args.frames + args.warmup) as u64 * specs.len() as u64);
+    // Progress counts frames under the frame clock, ms of display time under the real one.
+    let per_run = match &real {
+        None => u64::from(args.frames + args.warmup),
+        Some(r) => (r.duration_s * 1000.0) as u64,
+    };
+    let unit = if real.is_some() { "ms shown" } else { "frames" };
+    let progress = ProgressBar::new(per_run * specs.len() as u64);
     progress.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {msg} [{elapsed}]")
-            .expect("the progress template is valid"),
+        ProgressStyle::with_template(&format!(
+            "{{bar:40}} {{pos}}/{{len}} {unit}, {{msg}} [{{elapsed}}]"
+        ))
+        .expect("the progress template is valid"),
     );
-    let references = if args.quality {
+    let reference_quality = Quality::new(
+        args.reference_spp
+            .unwrap_or(if real.is_some() { 16.0 } else { 256.0 }),
+        args.reference_depth,
+        1.0,
+    );
+    let references = if args.quality && real.is_none() {
         let every = args.every.max(1);
         progress.inc_length(args.frames.div_ceil(every) as u64);
         progress.set_message("references");
-        let reference = Quality::new(args.reference_spp, args.reference_depth, 1.0);
         Some(quality::References::render(
             source.as_mut(),
             args.frames,
             args.every,
-            reference,
+            reference_quality,
             || progress.inc(1),
         )?)
     } else {
         None
     };
+    if args.quality && args.every == 0 {
+        bail!("--every must be at least 1");
+    }
+    let measured = if args.quality {
+        Keep::Every(args.every)
+    } else {
+        Keep::Nothing
+    };
+    let keep_pictures = if args.video.is_some() {
+        Keep::Every(1)
+    } else {
+        measured
+    };
     let run_count =
         specs.len() + usize::from(!args.no_best_fixed && specs.iter().any(|s| s.name == "fixed"));
-    // Encodes a finished run's frames (between runs, never during one) and frees them.
-    let keep = |mut run: ControllerRun| -> Result<ControllerRun> {
+    let mut video_runs = Vec::new();
+    // Encodes a finished run's frames (between runs, never during one) and frees those no
+    // longer needed.
+    let mut keep = |mut run: ControllerRun| -> Result<ControllerRun> {
         if let Some(dir) = &args.record {
             let folder = playback::run_folder(dir, &run.name, run_count);
             playback::write_recording(&run, &folder, width, height)?;
@@ -232,40 +352,129 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             ));
             run.recorded = Vec::new();
         }
+        if let (Some(shown), Some(r)) = (run.display.as_mut(), &real) {
+            if let Some(dir) = &args.video {
+                let folder = video::write_run(dir, &run.name, shown, &r.display, (width, height))?;
+                progress.println(format!("bench: video of {} in {folder}", run.name));
+                video_runs.push(video::VideoRun {
+                    name: run.name.clone(),
+                    folder,
+                });
+            }
+            let needed: BTreeSet<Option<usize>> =
+                screen_samples(shown, r.display.period_ms(), |i| measured.wants(i))
+                    .iter()
+                    .map(|s| s.frame)
+                    .collect();
+            shown.pictures.retain(|frame, _| needed.contains(frame));
+        }
         Ok(run)
     };
     let capture = Capture {
         references: references.as_ref(),
         record: args.record.is_some(),
     };
+    let run_one = |source: &mut dyn FrameSource,
+                   controller: &mut dyn Controller,
+                   label: &str|
+     -> Result<ControllerRun> {
+        match &real {
+            None => run_controller(source, controller, label, &sweep, capture, &progress),
+            Some(r) => run_controller_real(source, controller, label, r, keep_pictures, &progress),
+        }
+    };
     let mut runs: Vec<ControllerRun> = Vec::new();
+    // The best fixed quality runs once, after the first fixed one.
+    let mut best_fixed_due = !args.no_best_fixed;
     for (spec, controller) in &mut controllers {
         let label = match (spec.name.as_str(), spec.options.is_empty()) {
-            ("fixed", _) => format!("fixed {}", quality_label(&start, &bounds)),
+            ("fixed", _) => format!("fixed {}", quality_label(&controller.quality(), &bounds)),
             (name, true) => name.to_string(),
             (name, false) => format!("{name} {}", spec.options.replace(',', "+")),
         };
-        runs.push(keep(run_controller(
+        runs.push(keep(run_one(
             source.as_mut(),
             controller.as_mut(),
             &label,
-            &sweep,
-            capture,
-            &progress,
         )?)?);
-        if spec.name == "fixed" && !args.no_best_fixed {
-            progress.inc_length((args.frames + args.warmup) as u64);
+        if spec.name == "fixed" && best_fixed_due {
+            best_fixed_due = false;
+            progress.inc_length(per_run);
             let best = search_best_fixed(source.as_mut(), &sweep, args.search_views, &progress)?;
             let mut fixed = from_name("fixed", Setup::new(band, bounds, best)?, "")?;
             let label = format!("best fixed {}", quality_label(&best, &bounds));
-            runs.push(keep(run_controller(
+            runs.push(keep(run_one(source.as_mut(), fixed.as_mut(), &label)?)?);
+        }
+    }
+    if let Some(r) = &real {
+        let period = r.display.period_ms();
+        let refreshes = refresh_at_or_after(r.duration_s * 1000.0, period) as usize;
+        let grid: Vec<f64> = (0..refreshes).map(|i| i as f64 * period / 1000.0).collect();
+        // The world times the displayed quality compares with: each sampled refresh's and
+        // the world time of the frame on screen then.
+        let mut needed = Vec::new();
+        for run in &runs {
+            if let Some(shown) = &run.display {
+                for s in screen_samples(shown, period, |i| measured.wants(i)) {
+                    needed.extend([s.time_s, s.world_s]);
+                }
+            }
+        }
+        let needed_keys: BTreeSet<i64> = needed.iter().map(|&t| time_key(t)).collect();
+        let mut references = TimedReferences::new(reference_quality);
+        if let Some(dir) = &args.video {
+            progress.inc_length(refreshes as u64);
+            progress.set_message("references");
+            let key = video::ReferenceKey {
+                scene: scene_name.clone(),
+                backend: backend.clone(),
+                device: device.clone(),
+                resolution: [width, height],
+                refresh_hz: r.display.refresh_hz,
+                refreshes,
+                spp: reference_quality.spp,
+                depth: reference_quality.depth,
+                git_revision: machine::git_revision(),
+            };
+            video::write_references(
+                dir,
+                &key,
+                &grid,
                 source.as_mut(),
-                fixed.as_mut(),
-                &label,
-                &sweep,
-                capture,
-                &progress,
-            )?)?);
+                &mut references,
+                |t| needed_keys.contains(&time_key(t)),
+                || progress.inc(1),
+            )?;
+            video::write_index(
+                dir,
+                &video::VideoIndex {
+                    scene: scene_name.clone(),
+                    refresh_hz: r.display.refresh_hz,
+                    refreshes,
+                    resolution: [width, height],
+                    duration_s: r.duration_s,
+                    display: r.display,
+                    viewing: ViewingSetup::standard_fhd(),
+                    reference: key,
+                    runs: std::mem::take(&mut video_runs),
+                },
+            )?;
+        }
+        if args.quality {
+            progress.set_message("displayed quality");
+            references.render_missing(source.as_mut(), needed, || {
+                progress.inc_length(1);
+                progress.inc(1);
+            })?;
+            let ppd = ViewingSetup::standard_fhd().pixels_per_degree(width) as f32;
+            for run in &mut runs {
+                if let Some(shown) = run.display.as_mut() {
+                    let samples = screen_samples(shown, period, |i| measured.wants(i));
+                    shown.quality =
+                        displayed::measure(shown, &samples, &references, (width, height), ppd)?;
+                    shown.pictures.clear();
+                }
+            }
         }
     }
     progress.finish_and_clear();
@@ -284,15 +493,36 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         bounds: bounds.to_string(),
         start: start.to_string(),
         git_revision: machine::git_revision(),
+        clock: if real.is_some() { "real" } else { "frames" },
+        real: real.as_ref().map(|r| RealContext {
+            duration_s: r.duration_s,
+            display: r.display,
+            viewing: ViewingSetup::standard_fhd(),
+            reference: (args.quality || args.video.is_some())
+                .then(|| reference_quality.to_string()),
+            every: args.quality.then_some(args.every),
+        }),
     };
-    print!("{}", report::table(&runs));
-    println!(
-        "paper (GeForce 6800GT, 2005): {:.1} % in band without control, {:.1} % with step control",
-        report::PAPER_IN_BAND_FIXED_PCT,
-        report::PAPER_IN_BAND_CONTROLLED_PCT
-    );
     record::write_frames_csv(&runs, &args.out.join("frames.csv"))?;
-    report::write_summary(&context, &runs, &args.out.join("summary.json"))?;
+    let summary = report::write_summary(&context, &runs, &args.out.join("summary.json"))?;
+    if real.is_some() {
+        let controllers = summary["controllers"]
+            .as_array()
+            .cloned()
+            .unwrap_or_default();
+        let table = report::display_table(&controllers);
+        print!("{table}");
+        let path = args.out.join("table.md");
+        std::fs::write(&path, &table)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    } else {
+        print!("{}", report::table(&runs));
+        println!(
+            "paper (GeForce 6800GT, 2005): {:.1} % in band without control, {:.1} % with step control",
+            report::PAPER_IN_BAND_FIXED_PCT,
+            report::PAPER_IN_BAND_CONTROLLED_PCT
+        );
+    }
     plot::write_plots(
         &runs,
         (band.tmin_ms(), band.tmax_ms()),
@@ -300,7 +530,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         &args.out.join("frametime.svg"),
     )?;
     eprintln!(
-        "bench: wrote frames.csv, summary.json, frametime.png and frametime.svg to {}",
+        "bench: wrote frames.csv, summary.json{}, frametime.png and frametime.svg to {}",
+        if real.is_some() { ", table.md" } else { "" },
         args.out.display()
     );
 

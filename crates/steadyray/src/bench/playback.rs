@@ -10,7 +10,7 @@
 //!
 //! The frames are kept in memory during a run and encoded after it, off the timed loop.
 
-use super::record::ControllerRun;
+use super::record::{ControllerRun, safe_name};
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -36,17 +36,7 @@ pub fn run_folder(dir: &Path, name: &str, runs: usize) -> PathBuf {
     if runs <= 1 {
         return dir.to_path_buf();
     }
-    let safe: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || "-_.=".contains(c) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    dir.join(safe)
+    dir.join(safe_name(name))
 }
 
 /// Writes `run`'s recorded frames (upscaled to `width`×`height`) and `timings.csv` into

@@ -1,7 +1,7 @@
 //! Measuring the delivered quality (`bench --quality`): FLIP of delivered frames against a
 //! high-quality reference of the same view, rendered outside the timed loop.
 
-use super::source::FrameSource;
+use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result, bail};
 use std::collections::BTreeMap;
 use steadyray_control::Quality;
@@ -38,7 +38,7 @@ impl References {
         let mut images = BTreeMap::new();
         for k in (0..n).step_by(every as usize) {
             source
-                .frame(k, n, quality)
+                .frame(PathPoint::Frame { k, n }, quality)
                 .with_context(|| format!("reference of frame {k} at {quality} failed"))?;
             let Some(image) = source.last_image()? else {
                 bail!("--quality needs a renderer that produces images (not --simulate)");

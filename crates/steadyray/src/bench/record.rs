@@ -1,9 +1,13 @@
 //! What the experiment records: one row per frame, one run per controller.
 
+use super::real_clock::DisplayRun;
+use super::source::Measured;
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
+use steadyray_control::Band;
 use steadyray_control::metrics::RunSummary;
+use steadyray_display::FrameTimes;
 use steadyray_quality::Rgb8Image;
 
 /// One counted frame of one controller's sweep (a row of `frames.csv`).
@@ -12,6 +16,9 @@ pub struct FrameRow {
     pub frame: u32,
     /// Camera yaw in radians.
     pub angle: f32,
+    /// The path's time the frame shows, s (frame clock: k/N of the path's length; real
+    /// clock: the frame's predicted display time).
+    pub t_s: f64,
     pub spp: f32,
     pub depth: u32,
     pub scale: f32,
@@ -24,6 +31,30 @@ pub struct FrameRow {
     pub in_band: bool,
     /// Mean FLIP against the reference, for the frames `bench --quality` measured.
     pub flip: Option<f64>,
+    /// The frame's way to the screen (real clock only).
+    pub display: Option<FrameTimes>,
+}
+
+impl FrameRow {
+    /// The row of frame `frame`, which showed the path at `t_s` and was measured as `m` at
+    /// quality `m.report.quality`; no FLIP or display times yet.
+    pub fn measured(frame: u32, t_s: f64, m: &Measured, band: Band) -> Self {
+        let q = m.report.quality;
+        Self {
+            frame,
+            angle: m.angle,
+            t_s,
+            spp: q.spp,
+            depth: q.depth,
+            scale: q.scale,
+            tp_ms: m.report.tp_ms,
+            wall_ms: m.wall_ms,
+            rays: m.report.total_rays(),
+            in_band: band.contains(m.report.tp_ms),
+            flip: None,
+            display: None,
+        }
+    }
 }
 
 /// One controller's whole sweep and its figures.
@@ -37,22 +68,48 @@ pub struct ControllerRun {
     pub flip: Option<(f64, f64)>,
     /// Every counted frame's picture at its rendered size (`bench --record`), in order.
     pub recorded: Vec<Rgb8Image>,
+    /// What the viewer saw (real clock only).
+    pub display: Option<DisplayRun>,
 }
 
-/// Writes `frames.csv`: one row per frame and controller.
+/// A run's name as a file name: letters, digits, `-`, `_`, `.`, `=` kept, others `_`.
+pub fn safe_name(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "-_.=".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// Writes `frames.csv`: one row per frame and controller. The display columns (`start_ms`,
+/// `hand_over_ms`, `visible_ms`: the frame's way to the screen, ms of display time) are empty
+/// under the frame clock.
 pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
     let mut out = std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
     );
     writeln!(
         out,
-        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,rays,in_band,flip"
+        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms"
     )?;
     for run in runs {
         for r in &run.rows {
+            let display = r.display.map_or_else(
+                || ",,".to_string(),
+                |d| {
+                    format!(
+                        "{:.4},{:.4},{:.4}",
+                        d.start_ms, d.hand_over_ms, d.visible_ms
+                    )
+                },
+            );
             writeln!(
                 out,
-                "{},{},{:.6},{},{},{},{:.4},{:.4},{},{},{}",
+                "{},{},{:.6},{},{},{},{:.4},{:.4},{},{},{},{:.6},{}",
                 run.name,
                 r.frame,
                 r.angle,
@@ -63,7 +120,9 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
                 r.wall_ms,
                 r.rays,
                 u8::from(r.in_band),
-                r.flip.map_or_else(String::new, |f| format!("{f:.6}"))
+                r.flip.map_or_else(String::new, |f| format!("{f:.6}")),
+                r.t_s,
+                display,
             )?;
         }
     }

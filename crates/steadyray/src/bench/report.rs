@@ -7,6 +7,7 @@ use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
 use steadyray_control::{Bounds, Quality, RunSummary};
+use steadyray_display::{DisplayConfig, DisplayFigures, ViewingSetup};
 
 /// The paper's reported figures, for comparison in every report.
 pub const PAPER_IN_BAND_FIXED_PCT: f64 = 8.7;
@@ -26,6 +27,27 @@ pub struct RunContext {
     pub bounds: String,
     pub start: String,
     pub git_revision: String,
+    /// `frames` or `real`.
+    pub clock: &'static str,
+    /// The real clock's display and viewing set-up.
+    #[serde(flatten)]
+    pub real: Option<RealContext>,
+}
+
+/// What a real-clock run adds to `summary.json`'s context.
+#[derive(Debug, Serialize)]
+pub struct RealContext {
+    /// Display time per run, s.
+    pub duration_s: f64,
+    pub display: DisplayConfig,
+    /// The viewing set-up of displayed FLIP and JOD.
+    pub viewing: ViewingSetup,
+    /// The references' quality, when there are references.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<String>,
+    /// Displayed FLIP measures refreshes 0, K, 2K, ...
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub every: Option<u32>,
 }
 
 #[derive(Serialize)]
@@ -39,6 +61,26 @@ struct ControllerEntry<'a> {
     /// 95th percentile of the measured frames' FLIP.
     #[serde(skip_serializing_if = "Option::is_none")]
     flip_p95: Option<f64>,
+    /// What the viewer saw (real clock).
+    #[serde(flatten)]
+    display: Option<&'a DisplayFigures>,
+    /// The screen against the world at each sampled refresh (real clock, `--quality`).
+    #[serde(flatten)]
+    displayed: Option<DisplayedEntry>,
+}
+
+/// The displayed quality's figures in `summary.json`.
+#[derive(Serialize)]
+struct DisplayedEntry {
+    /// Mean FLIP of the screen against the world at the refresh.
+    displayed_flip_mean: f64,
+    displayed_flip_p95: f64,
+    /// Mean FLIP of the screen against the world at its frame's own time.
+    frame_flip_mean: f64,
+    /// Mean age of the world on screen at the sampled refreshes, ms.
+    screen_age_ms_mean: f64,
+    /// Refreshes measured.
+    displayed_samples: usize,
 }
 
 #[derive(Serialize)]
@@ -55,8 +97,12 @@ struct PaperFigures {
     with_control: f64,
 }
 
-/// Writes `summary.json`.
-pub fn write_summary(context: &RunContext, runs: &[ControllerRun], path: &Path) -> Result<()> {
+/// Writes `summary.json` and returns what it wrote.
+pub fn write_summary(
+    context: &RunContext,
+    runs: &[ControllerRun],
+    path: &Path,
+) -> Result<serde_json::Value> {
     let summary = Summary {
         context,
         paper_in_band_pct: PaperFigures {
@@ -70,11 +116,75 @@ pub fn write_summary(context: &RunContext, runs: &[ControllerRun], path: &Path) 
                 summary: &r.summary,
                 flip_mean: r.flip.map(|f| f.0),
                 flip_p95: r.flip.map(|f| f.1),
+                display: r.display.as_ref().map(|d| &d.figures),
+                displayed: r
+                    .display
+                    .as_ref()
+                    .and_then(|d| d.quality)
+                    .map(|q| DisplayedEntry {
+                        displayed_flip_mean: q.flip_mean,
+                        displayed_flip_p95: q.flip_p95,
+                        frame_flip_mean: q.frame_flip_mean,
+                        screen_age_ms_mean: q.age_ms_mean,
+                        displayed_samples: q.samples,
+                    }),
             })
             .collect(),
     };
-    let text = serde_json::to_string_pretty(&summary)?;
-    std::fs::write(path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
+    let value = serde_json::to_value(&summary)?;
+    write_json(&value, path)?;
+    Ok(value)
+}
+
+/// Writes `value` as pretty JSON under a temporary name, then renames it over `path`.
+pub fn write_json(value: &serde_json::Value, path: &Path) -> Result<()> {
+    let temp = path.with_extension("json.partial");
+    let text = serde_json::to_string_pretty(value)? + "\n";
+    std::fs::write(&temp, text).with_context(|| format!("cannot write {}", temp.display()))?;
+    std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// The real clock's table, one row per controller: header, `summary.json` key, decimals.
+const DISPLAY_COLUMNS: [(&str, &str, usize); 13] = [
+    ("frames", "frames_rendered", 0),
+    ("shown fps", "displayed_fps", 1),
+    ("repeated %", "repeated_pct", 1),
+    ("pacing std ms", "pacing_std_ms", 2),
+    ("latency ms", "latency_ms_mean", 1),
+    ("latency p95", "latency_ms_p95", 1),
+    ("Tp in band %", "in_band_pct", 1),
+    ("S", "mean_spp", 2),
+    ("R", "mean_depth", 1),
+    ("scale", "mean_scale", 2),
+    ("displayed FLIP", "displayed_flip_mean", 4),
+    ("FLIP p95", "displayed_flip_p95", 4),
+    ("JOD", "jod", 2),
+];
+
+/// The real clock's table (Markdown) from `summary.json`'s controllers: what the viewer saw,
+/// with JOD once `steadyray jod merge` has added it; a missing figure shows as `-`.
+pub fn display_table(controllers: &[serde_json::Value]) -> String {
+    let mut out = String::from("| controller |");
+    for (header, _, _) in DISPLAY_COLUMNS {
+        let _ = write!(out, " {header} |");
+    }
+    out.push_str("\n|---|");
+    out.push_str(&"---|".repeat(DISPLAY_COLUMNS.len()));
+    out.push('\n');
+    for c in controllers {
+        let name = c.get("name").and_then(|n| n.as_str()).unwrap_or("?");
+        let _ = write!(out, "| {name} |");
+        for (_, key, decimals) in DISPLAY_COLUMNS {
+            match c.get(key).and_then(serde_json::Value::as_f64) {
+                Some(v) => {
+                    let _ = write!(out, " {v:.decimals$} |");
+                }
+                None => out.push_str(" - |"),
+            }
+        }
+        out.push('\n');
+    }
+    out
 }
 
 /// The table printed on the terminal: one row per controller.

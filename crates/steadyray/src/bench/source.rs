@@ -2,8 +2,11 @@
 //! the control crate's simulated renderer on a fake clock (`bench --simulate`).
 
 use anyhow::Result;
-use steadyray_control::simulate::{RendererModel, SimRenderer};
+use std::f64::consts::TAU;
+use std::time::Instant;
+use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
+use steadyray_quality::Rgb8Image;
 use steadyray_render::{Image, RenderSettings, Renderer};
 use steadyray_scene::Scene;
 
@@ -17,20 +20,48 @@ pub struct Measured {
     pub angle: f32,
 }
 
-/// A source of frames at any quality along a fixed camera sweep.
+/// A frame handed to the display: its cost and, from a renderer, the picture.
+pub struct HandOver {
+    /// What handing the frame over cost, ms (see [`FrameSource::hand_over`]).
+    pub ms: f64,
+    /// The tone-mapped 8-bit frame at its rendered size, or `None` from a source without
+    /// images (the simulated renderer).
+    pub image: Option<Rgb8Image>,
+}
+
+/// Where on the camera path a frame is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PathPoint {
+    /// Frame `k` of an `n`-frame sweep (the frame clock, the paper's protocol).
+    Frame { k: u32, n: u32 },
+    /// The path at `t_s` seconds (the real clock); `index` numbers the frame in its run.
+    Time { index: usize, t_s: f64 },
+}
+
+/// A source of frames at any quality along a fixed camera path.
 pub trait FrameSource {
     /// The backend and device, for reports.
     fn describe(&self) -> (String, String);
     /// Full-scale image size.
     fn resolution(&self) -> (u32, u32);
-    /// Renders frame `k` of an `n`-frame sweep at quality `q`.
-    fn frame(&mut self, k: u32, n: u32, q: Quality) -> Result<Measured>;
+    /// The camera path's length in seconds (its default frames at 60 per second).
+    fn path_duration_s(&self) -> f64;
+    /// Renders the frame at `at` at quality `q`.
+    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured>;
+    /// Hands the last frame to the display and measures what that costs: a renderer's frame is
+    /// read back and tone-mapped to the 8-bit picture a window would upload (the CPU
+    /// backend's way to the screen; on a GPU it is more than a present costs); the simulated
+    /// renderer takes [`SIM_HAND_OVER_MS`].
+    fn hand_over(&mut self) -> Result<HandOver>;
     /// Frames where the load changes suddenly by construction, when known.
     fn load_changes(&self, n: u32) -> Option<Vec<usize>>;
     /// The linear image of the last frame (read back outside any timing), or `None` for a
     /// source without images (the simulated renderer).
     fn last_image(&mut self) -> Result<Option<Image>>;
 }
+
+/// The simulated renderer's hand-over cost, ms.
+pub const SIM_HAND_OVER_MS: f64 = 1.0;
 
 /// The image size for a resolution scale: each side scaled and rounded, at least 1 pixel.
 pub fn scaled_size(width: u32, height: u32, scale: f32) -> (u32, u32) {
@@ -56,9 +87,17 @@ impl FrameSource for RendererSource {
         (self.width, self.height)
     }
 
-    fn frame(&mut self, k: u32, n: u32, q: Quality) -> Result<Measured> {
-        let camera = self.scene.camera_at(k, n);
-        let time_s = self.scene.path.frame_time(k, n);
+    fn path_duration_s(&self) -> f64 {
+        self.scene.path.duration_s()
+    }
+
+    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+        let (camera, time_s) = match at {
+            PathPoint::Frame { k, n } => {
+                (self.scene.camera_at(k, n), self.scene.path.frame_time(k, n))
+            }
+            PathPoint::Time { t_s, .. } => (self.scene.camera_at_time(t_s), t_s),
+        };
         let (width, height) = scaled_size(self.width, self.height, q.scale);
         let settings = RenderSettings {
             width,
@@ -82,6 +121,17 @@ impl FrameSource for RendererSource {
         })
     }
 
+    fn hand_over(&mut self) -> Result<HandOver> {
+        let start = Instant::now();
+        let image = self.renderer.read_image()?;
+        let rgba = image.to_srgb8_rgba();
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok(HandOver {
+            ms,
+            image: Some(Rgb8Image::from_rgba(image.width, image.height, &rgba)?),
+        })
+    }
+
     fn load_changes(&self, _n: u32) -> Option<Vec<usize>> {
         None
     }
@@ -94,6 +144,8 @@ impl FrameSource for RendererSource {
 /// Frames from the simulated renderer: a cost model driven by the corridor-shaped load.
 pub struct SimulatedSource {
     pub renderer: SimRenderer,
+    /// Frames of the sweep: the path lasts frames / 60 s.
+    pub frames: u32,
 }
 
 impl FrameSource for SimulatedSource {
@@ -114,12 +166,33 @@ impl FrameSource for SimulatedSource {
         ((pixels / height as u64) as u32, height)
     }
 
-    fn frame(&mut self, k: u32, n: u32, q: Quality) -> Result<Measured> {
-        let report = self.renderer.render(k as usize, q);
+    fn path_duration_s(&self) -> f64 {
+        f64::from(self.frames) / 60.0
+    }
+
+    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+        let (report, turn) = match at {
+            PathPoint::Frame { k, n } => (
+                self.renderer.render(k as usize, q),
+                f64::from(k) / f64::from(n.max(1)),
+            ),
+            PathPoint::Time { index, t_s } => {
+                let turn = (t_s / self.path_duration_s()).rem_euclid(1.0);
+                let load = corridor_load(TAU * turn);
+                (self.renderer.render_load(index, &load, q), turn)
+            }
+        };
         Ok(Measured {
             wall_ms: report.tp_ms,
             report,
-            angle: std::f32::consts::TAU * k as f32 / n.max(1) as f32,
+            angle: (TAU * turn) as f32,
+        })
+    }
+
+    fn hand_over(&mut self) -> Result<HandOver> {
+        Ok(HandOver {
+            ms: SIM_HAND_OVER_MS,
+            image: None,
         })
     }
 
@@ -136,5 +209,6 @@ impl FrameSource for SimulatedSource {
 pub fn simulated(n: u32) -> SimulatedSource {
     SimulatedSource {
         renderer: SimRenderer::new(RendererModel::corridor(n as usize)),
+        frames: n,
     }
 }

@@ -2,6 +2,7 @@
 
 pub mod calibrate;
 pub mod compare;
+pub mod jod;
 pub mod ray_dump;
 pub mod raybench;
 pub mod render;

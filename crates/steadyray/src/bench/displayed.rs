@@ -1,0 +1,275 @@
+//! The displayed quality (`bench --quality --clock real`): FLIP of the screen at sampled
+//! refreshes against a reference render of the world at that refresh's time, under the
+//! stated viewing set-up. References are rendered after the runs (the runs do not wait for
+//! them), once per time, and shared by every controller.
+
+use super::real_clock::DisplayRun;
+use super::source::{FrameSource, PathPoint};
+use anyhow::{Context, Result, bail};
+use std::collections::BTreeMap;
+use steadyray_control::Quality;
+use steadyray_display::stats::{mean, quantile};
+use steadyray_quality::Rgb8Image;
+
+/// A world time as a reference's key: whole nanoseconds, so that a frame rendered at a
+/// refresh's time (i·P) finds that refresh's reference.
+pub fn time_key(t_s: f64) -> i64 {
+    (t_s * 1e9).round() as i64
+}
+
+/// References of the world at given times: reference quality, full scale, tone-mapped.
+pub struct TimedReferences {
+    quality: Quality,
+    images: BTreeMap<i64, Rgb8Image>,
+}
+
+impl TimedReferences {
+    /// No references yet, to be rendered at `quality`.
+    pub fn new(quality: Quality) -> Self {
+        Self {
+            quality,
+            images: BTreeMap::new(),
+        }
+    }
+
+    /// The reference quality.
+    pub fn quality(&self) -> Quality {
+        self.quality
+    }
+
+    /// The reference of the world at `t_s`, if rendered.
+    pub fn get(&self, t_s: f64) -> Option<&Rgb8Image> {
+        self.images.get(&time_key(t_s))
+    }
+
+    /// Adds a reference made elsewhere (e.g. read from a video folder).
+    pub fn insert(&mut self, t_s: f64, image: Rgb8Image) {
+        self.images.insert(time_key(t_s), image);
+    }
+
+    /// Renders the references of those `times` not held yet; `progress` is told of each.
+    pub fn render_missing(
+        &mut self,
+        source: &mut dyn FrameSource,
+        times: impl IntoIterator<Item = f64>,
+        mut progress: impl FnMut(),
+    ) -> Result<()> {
+        let (width, height) = source.resolution();
+        let mut missing: Vec<f64> = times
+            .into_iter()
+            .filter(|&t| self.get(t).is_none())
+            .collect();
+        missing.sort_by(f64::total_cmp);
+        missing.dedup_by_key(|t| time_key(*t));
+        for t_s in missing {
+            let at = PathPoint::Time { index: 0, t_s };
+            source
+                .frame(at, self.quality)
+                .with_context(|| format!("reference at {t_s:.4} s ({}) failed", self.quality))?;
+            let Some(image) = source.last_image()? else {
+                bail!("references need a renderer that produces images (not --simulate)");
+            };
+            let rgb = Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba())?;
+            self.insert(t_s, rgb.resize_bilinear(width, height));
+            progress();
+        }
+        Ok(())
+    }
+}
+
+/// The screen at one sample: its time, what it showed and that frame's world time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScreenSample {
+    /// The sample's number: it is at `index`·P.
+    pub index: usize,
+    pub time_s: f64,
+    /// The frame on screen; `None`: the last warm-up frame.
+    pub frame: Option<usize>,
+    /// The world time that frame shows, s.
+    pub world_s: f64,
+}
+
+/// The screen of a run at every sample `wants` asks for, every `period_ms`.
+pub fn screen_samples(
+    run: &DisplayRun,
+    period_ms: f64,
+    wants: impl Fn(usize) -> bool,
+) -> Vec<ScreenSample> {
+    run.timeline
+        .sampled(period_ms)
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| wants(*i))
+        .map(|(index, r)| ScreenSample {
+            index,
+            time_s: r.time_ms / 1000.0,
+            frame: r.frame,
+            world_s: run.world_of(r.frame),
+        })
+        .collect()
+}
+
+/// The picture a sample shows at the full-scale size: the kept frame upscaled, or black when
+/// nothing was on screen yet (no warm-up frame).
+pub fn screen_picture(
+    run: &DisplayRun,
+    frame: Option<usize>,
+    (width, height): (u32, u32),
+) -> Result<Rgb8Image> {
+    match run.pictures.get(&frame) {
+        Some(picture) => Ok(picture.resize_bilinear(width, height)),
+        None if frame.is_none() => Ok(Rgb8Image::from_fn(width, height, |_, _| [0; 3])),
+        None => bail!("the picture of frame {frame:?} on screen was not kept"),
+    }
+}
+
+/// What one run's screen looked like against the references.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DisplayedQuality {
+    /// Sampled refreshes measured.
+    pub samples: usize,
+    /// Mean and 95th percentile of FLIP of the screen against the world at the refresh.
+    pub flip_mean: f64,
+    pub flip_p95: f64,
+    /// Mean FLIP of the screen against the world at the time its frame shows: the picture's
+    /// own error, without its age.
+    pub frame_flip_mean: f64,
+    /// Mean age of the world on screen, ms (refresh time − the frame's world time).
+    pub age_ms_mean: f64,
+}
+
+/// Measures a run's screen at `samples` against `references` (which must hold every
+/// sample's time and every sampled frame's world time) at `pixels_per_degree`.
+pub fn measure(
+    run: &DisplayRun,
+    samples: &[ScreenSample],
+    references: &TimedReferences,
+    size: (u32, u32),
+    pixels_per_degree: f32,
+) -> Result<Option<DisplayedQuality>> {
+    let reference = |t_s: f64| {
+        references
+            .get(t_s)
+            .with_context(|| format!("no reference of the world at {t_s:.4} s"))
+    };
+    let (mut displayed, mut own, mut age) = (Vec::new(), Vec::new(), Vec::new());
+    for s in samples {
+        let screen = screen_picture(run, s.frame, size)?;
+        let at = |t_s| -> Result<f64> {
+            Ok(steadyray_quality::flip_at(reference(t_s)?, &screen, pixels_per_degree)?.mean())
+        };
+        displayed.push(at(s.time_s)?);
+        own.push(at(s.world_s)?);
+        age.push(1000.0 * (s.time_s - s.world_s));
+    }
+    Ok(mean(&displayed).map(|flip_mean| DisplayedQuality {
+        samples: displayed.len(),
+        flip_mean,
+        flip_p95: quantile(&displayed, 0.95).unwrap_or(flip_mean),
+        frame_flip_mean: mean(&own).unwrap_or(0.0),
+        age_ms_mean: mean(&age).unwrap_or(0.0),
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
+
+    const P_S: f64 = 1.0 / 60.0;
+
+    /// The world at `t_s`: a white bar moving right at `speed` pixels per second.
+    fn world(t_s: f64, speed: f64) -> Rgb8Image {
+        Rgb8Image::from_fn(64, 32, |x, _| {
+            if (f64::from(x) - 8.0 - speed * t_s).abs() < 3.0 {
+                [255; 3]
+            } else {
+                [20; 3]
+            }
+        })
+    }
+
+    /// Nearly instant frames on a 60 Hz display (each shown at the next refresh), each showing
+    /// the world `lag` refreshes before its display time; the references of every refresh.
+    fn screen(lag: f64, speed: f64) -> (DisplayRun, TimedReferences) {
+        let display = DisplayConfig::new(60.0, SyncMode::Vsync).unwrap();
+        let mut clock = RealClock::new(display, 0.2).unwrap();
+        let mut world_s = Vec::new();
+        while let Some(slot) = clock.next_frame() {
+            world_s.push(slot.world_s() - lag * P_S);
+            clock.present(0.5, 0.0).unwrap();
+        }
+        let timeline = clock.finish();
+        let mut pictures: BTreeMap<Option<usize>, Rgb8Image> = world_s
+            .iter()
+            .enumerate()
+            .map(|(j, &t)| (Some(j), world(t, speed)))
+            .collect();
+        pictures.insert(None, world(0.0, speed));
+        let mut references = TimedReferences::new(Quality::new(16.0, 16, 1.0));
+        for r in timeline.refreshes() {
+            references.insert(r.time_ms / 1000.0, world(r.time_ms / 1000.0, speed));
+        }
+        for &t in &world_s {
+            references.insert(t, world(t, speed));
+        }
+        let run = DisplayRun {
+            figures: DisplayFigures::of(&timeline),
+            timeline,
+            pictures,
+            world_s,
+            quality: None,
+        };
+        (run, references)
+    }
+
+    fn displayed(lag: f64, speed: f64) -> DisplayedQuality {
+        let (run, references) = screen(lag, speed);
+        let samples = screen_samples(&run, 1000.0 * P_S, |_| true);
+        assert_eq!(samples.len(), 12);
+        measure(&run, &samples, &references, (64, 32), 12.6)
+            .unwrap()
+            .unwrap()
+    }
+
+    #[test]
+    fn frames_of_the_reference_shown_on_time_score_zero() {
+        let q = displayed(0.0, 120.0);
+        assert_eq!(
+            (q.flip_mean, q.flip_p95, q.frame_flip_mean),
+            (0.0, 0.0, 0.0)
+        );
+        assert!(q.age_ms_mean.abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_stale_frame_costs_more_the_faster_the_camera_moves() {
+        let slow = displayed(1.0, 60.0);
+        let fast = displayed(1.0, 240.0);
+        assert!(slow.flip_mean > 0.0, "{slow:?}");
+        assert!(fast.flip_mean > 1.5 * slow.flip_mean, "{slow:?} {fast:?}");
+        // Each frame is perfect for its own time: the error is its age alone.
+        assert_eq!(fast.frame_flip_mean, 0.0);
+        // Refreshes 1 to 11 show a frame one refresh old; refresh 0 the warm-up frame, on time.
+        assert!((fast.age_ms_mean - 1000.0 * P_S * 11.0 / 12.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn stale_frames_of_a_static_camera_score_zero() {
+        let q = displayed(2.0, 0.0);
+        assert_eq!(q.flip_mean, 0.0);
+        assert!(q.age_ms_mean > 0.0);
+    }
+
+    #[test]
+    fn a_missing_reference_or_picture_is_an_error() {
+        let (mut run, references) = screen(0.0, 60.0);
+        let samples = screen_samples(&run, 1000.0 * P_S, |_| true);
+        let empty = TimedReferences::new(references.quality());
+        let err = measure(&run, &samples, &empty, (64, 32), 12.6).unwrap_err();
+        assert!(err.to_string().contains("no reference"), "{err}");
+        run.pictures.remove(&Some(3));
+        let err = measure(&run, &samples, &references, (64, 32), 12.6).unwrap_err();
+        assert!(err.to_string().contains("not kept"), "{err}");
+    }
+}

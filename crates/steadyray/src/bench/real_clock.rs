@@ -1,0 +1,214 @@
+//! `bench --clock real`: each controller runs for a span of display time on the display model
+//! (`steadyray_display`), rendering each frame's world at its predicted display time. Display
+//! time advances by the measured Tp and hand-over cost alone, so whatever the bench does
+//! between frames (reading pictures back, keeping them) changes no figure.
+
+use super::displayed::DisplayedQuality;
+use super::record::{ControllerRun, FrameRow};
+use super::source::{FrameSource, PathPoint};
+use anyhow::{Context, Result};
+use indicatif::ProgressBar;
+use std::collections::BTreeMap;
+use steadyray_control::{Band, Bounds, Controller, FrameRecord, summarize};
+use steadyray_display::model::{TIME_EPS_MS, refresh_at_or_after};
+use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, Timeline};
+use steadyray_quality::Rgb8Image;
+
+/// What every real-clock run follows.
+#[derive(Clone, Copy, Debug)]
+pub struct RealSweep {
+    pub display: DisplayConfig,
+    /// Display time per run, s.
+    pub duration_s: f64,
+    /// Frames rendered (and shown to the controller) at the path's start before the run; the
+    /// last of them is on screen until the run's first frame replaces it.
+    pub warmup: u32,
+    pub band: Band,
+    pub bounds: Bounds,
+}
+
+/// Which samples of the screen (at the display's refresh rate: sample i at i·P) a run keeps
+/// the pictures of, for a video or the displayed quality.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Keep {
+    /// No pictures.
+    Nothing,
+    /// Samples 0, K, 2K, ... (`Every(1)`: all of them).
+    Every(u32),
+}
+
+impl Keep {
+    /// Whether sample `i` is kept.
+    pub fn wants(self, i: usize) -> bool {
+        match self {
+            Keep::Nothing => false,
+            Keep::Every(k) => i.is_multiple_of(k.max(1) as usize),
+        }
+    }
+
+    /// Whether a kept sample falls in [`from_ms`, `to_ms`) and before `end_ms`, samples being
+    /// every `period_ms`: whether a frame on screen over that span must be kept.
+    fn any_in(self, from_ms: f64, to_ms: f64, period_ms: f64, end_ms: f64) -> bool {
+        let Keep::Every(k) = self else {
+            return false;
+        };
+        let k = u64::from(k.max(1));
+        let i = refresh_at_or_after(from_ms, period_ms).div_ceil(k) * k;
+        let t = i as f64 * period_ms;
+        t < to_ms - TIME_EPS_MS && t < end_ms - TIME_EPS_MS
+    }
+}
+
+/// A real-clock run as the viewer saw it.
+#[derive(Clone, Debug)]
+pub struct DisplayRun {
+    pub timeline: Timeline,
+    pub figures: DisplayFigures,
+    /// The pictures (tone-mapped, at their rendered size) of the frames on screen at the kept
+    /// samples, by frame; `None` is the last warm-up frame, on screen before the first.
+    pub pictures: BTreeMap<Option<usize>, Rgb8Image>,
+    /// World time of each frame, s (the warm-up frame's is 0).
+    pub world_s: Vec<f64>,
+    /// The screen against the references (`bench --quality`), measured after the runs.
+    pub quality: Option<DisplayedQuality>,
+}
+
+impl DisplayRun {
+    /// The world time a frame on screen shows, s.
+    pub fn world_of(&self, frame: Option<usize>) -> f64 {
+        frame.map_or(0.0, |j| self.world_s[j])
+    }
+}
+
+/// The frame on screen while a run goes on.
+struct OnScreen {
+    frame: Option<usize>,
+    visible_ms: f64,
+    picture: Option<Rgb8Image>,
+}
+
+/// Runs `controller` under the real clock: warm-up frames at the path's start, then frames
+/// for as long as one starts before the run's end, each rendering the path at the time the
+/// display model predicts it will be shown. Pictures of the frames on screen at the samples
+/// `keep` asks for are kept (read back with the hand-over, outside the timing).
+pub fn run_controller_real(
+    source: &mut dyn FrameSource,
+    controller: &mut dyn Controller,
+    name: &str,
+    sweep: &RealSweep,
+    keep: Keep,
+    progress: &ProgressBar,
+) -> Result<ControllerRun> {
+    controller.reset();
+    progress.set_message(name.to_string());
+    let mut clock = RealClock::new(sweep.display, sweep.duration_s)?;
+    let (period, end) = (sweep.display.period_ms(), clock.duration_ms());
+    let mut warm_picture = None;
+    for _ in 0..sweep.warmup {
+        let m = source.frame(PathPoint::Time { index: 0, t_s: 0.0 }, controller.quality())?;
+        let handed = source.hand_over()?;
+        // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
+        let _ = controller.observe(&m.report);
+        clock.expect(m.report.tp_ms + handed.ms);
+        warm_picture = handed.image;
+    }
+    let mut screen = OnScreen {
+        frame: None,
+        visible_ms: 0.0,
+        picture: warm_picture,
+    };
+    let mut pictures = BTreeMap::new();
+    let (mut rows, mut records, mut world_s) = (Vec::new(), Vec::new(), Vec::new());
+    let mut shown_ms = 0u64;
+    while let Some(slot) = clock.next_frame() {
+        let q = controller.quality();
+        let at = PathPoint::Time {
+            index: slot.index,
+            t_s: slot.world_s(),
+        };
+        let m = source
+            .frame(at, q)
+            .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
+        let handed = source.hand_over()?;
+        let tp_ms = m.report.tp_ms;
+        if let Err(e) = controller.observe(&m.report) {
+            log::warn!("{name}: frame {}: report refused: {e}", slot.index);
+        }
+        let times = clock
+            .present(tp_ms, handed.ms)
+            .with_context(|| format!("{name}: frame {}", slot.index))?;
+        let before = std::mem::replace(
+            &mut screen,
+            OnScreen {
+                frame: Some(slot.index),
+                visible_ms: times.visible_ms,
+                picture: handed.image,
+            },
+        );
+        if keep.any_in(before.visible_ms, times.visible_ms, period, end)
+            && let Some(picture) = before.picture
+        {
+            pictures.insert(before.frame, picture);
+        }
+        rows.push(FrameRow {
+            display: Some(times),
+            ..FrameRow::measured(slot.index as u32, slot.world_s(), &m, sweep.band)
+        });
+        records.push(FrameRecord {
+            frame: slot.index,
+            tp_ms,
+            quality: q,
+            rays: m.report.total_rays(),
+        });
+        world_s.push(slot.world_s());
+        let now_ms = times.visible_ms.min(end) as u64;
+        progress.inc(now_ms.saturating_sub(shown_ms));
+        shown_ms = shown_ms.max(now_ms);
+    }
+    progress.inc((end as u64).saturating_sub(shown_ms));
+    if keep.any_in(screen.visible_ms, f64::INFINITY, period, end)
+        && let Some(picture) = screen.picture
+    {
+        pictures.insert(screen.frame, picture);
+    }
+    let timeline = clock.finish();
+    let summary = summarize(&records, sweep.band, sweep.bounds.max_quality(), None);
+    Ok(ControllerRun {
+        name: name.to_string(),
+        rows,
+        summary,
+        flip: None,
+        recorded: Vec::new(),
+        display: Some(DisplayRun {
+            figures: DisplayFigures::of(&timeline),
+            timeline,
+            pictures,
+            world_s,
+            quality: None,
+        }),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kept_samples_in_a_span() {
+        let p = 10.0;
+        let every2 = Keep::Every(2);
+        assert!(every2.any_in(0.0, 5.0, p, 100.0), "sample 0");
+        assert!(!every2.any_in(5.0, 20.0, p, 100.0), "sample 1 is not kept");
+        assert!(every2.any_in(5.0, 20.5, p, 100.0), "sample 2 at 20");
+        assert!(
+            !every2.any_in(95.0, f64::INFINITY, p, 100.0),
+            "after the end"
+        );
+        assert!(
+            Keep::Every(1).any_in(10.0, 10.5, p, 100.0),
+            "a frame shown at a sample"
+        );
+        assert!(!Keep::Nothing.any_in(0.0, 100.0, p, 100.0));
+        assert!(every2.wants(4) && !every2.wants(3) && !Keep::Nothing.wants(0));
+    }
+}

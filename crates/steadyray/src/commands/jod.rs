@@ -1,0 +1,295 @@
+//! `steadyray jod`: what the JOD tool (`scripts/jod/jod.py`, ColorVideoVDP) measured, brought
+//! into the bench's reports. `merge` adds each run's `jod` to a real-clock bench's
+//! `summary.json` and `table.md`; `plot` draws JOD against the frames shown per second for
+//! every method of one or more benches.
+
+use crate::bench::report::{display_table, write_json};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct JodArgs {
+    #[command(subcommand)]
+    pub command: JodCommand,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum JodCommand {
+    /// Add the scores of `jod.py` (its jod.json) to the bench's summary.json (each run's
+    /// `jod`) and rewrite table.md beside it.
+    Merge {
+        /// The scores: DIR/jod.json of `scripts/jod/jod.py DIR`.
+        #[arg(long)]
+        scores: PathBuf,
+        /// The summary.json of the `bench --clock real --video DIR` run that made DIR.
+        #[arg(long)]
+        summary: PathBuf,
+    },
+    /// Plot JOD against mean displayed frames per second, a point per method, for the runs
+    /// of one or more merged summary.json files (PNG and SVG).
+    Plot {
+        /// Merged summary.json files.
+        #[arg(required = true)]
+        summaries: Vec<PathBuf>,
+        /// The PNG to write (an SVG of the same name beside it).
+        #[arg(short = 'o', long = "output")]
+        output: PathBuf,
+    },
+}
+
+/// Runs a `jod` subcommand.
+pub fn run(args: &JodArgs) -> Result<()> {
+    match &args.command {
+        JodCommand::Merge { scores, summary } => {
+            let table = merge(scores, summary)?;
+            print!("{table}");
+            Ok(())
+        }
+        JodCommand::Plot { summaries, output } => {
+            let points = summaries
+                .iter()
+                .map(|path| {
+                    plot_points(&read_json(path)?).with_context(|| path.display().to_string())
+                })
+                .collect::<Result<Vec<_>>>()?
+                .concat();
+            crate::bench::plot::write_jod_plot(&points, output)?;
+            eprintln!("jod: wrote {}", output.display());
+            Ok(())
+        }
+    }
+}
+
+fn read_json(path: &Path) -> Result<Value> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    serde_json::from_str(&text).with_context(|| format!("{} is not valid JSON", path.display()))
+}
+
+/// Merges the scores of `scores_path` into `summary_path` (and its `table.md`); returns the
+/// table. The summary must be a real-clock bench's under the viewing set-up the scores were
+/// made with, and every score must name one of its runs; nothing is written otherwise.
+pub fn merge(scores_path: &Path, summary_path: &Path) -> Result<String> {
+    let scores = read_json(scores_path)?;
+    let mut summary = read_json(summary_path)?;
+    if summary.get("clock").and_then(Value::as_str) != Some("real") {
+        bail!(
+            "{} is not from `bench --clock real`: JOD scores a screen video",
+            summary_path.display()
+        );
+    }
+    if scores.get("viewing") != summary.get("viewing") {
+        bail!(
+            "the viewing set-up of {} differs from that of {}",
+            scores_path.display(),
+            summary_path.display()
+        );
+    }
+    let jod = scores
+        .get("jod")
+        .and_then(Value::as_object)
+        .with_context(|| format!("{} has no `jod` object", scores_path.display()))?;
+    let controllers = summary
+        .get_mut("controllers")
+        .and_then(Value::as_array_mut)
+        .with_context(|| format!("{} has no `controllers` list", summary_path.display()))?;
+    let name_of = |c: &Value| c.get("name").and_then(Value::as_str).map(str::to_string);
+    let known: Vec<String> = controllers.iter().filter_map(name_of).collect();
+    for (name, value) in jod {
+        let score = value
+            .as_f64()
+            .filter(|v| v.is_finite())
+            .with_context(|| format!("the score of {name:?} is not a number: {value}"))?;
+        let entry = controllers
+            .iter_mut()
+            .find(|c| name_of(c).as_deref() == Some(name.as_str()))
+            .with_context(|| {
+                format!(
+                    "{} scores {name:?}, which {} does not have (it has: {})",
+                    scores_path.display(),
+                    summary_path.display(),
+                    known.join(", ")
+                )
+            })?;
+        entry["jod"] = Value::from(score);
+    }
+    let unscored: Vec<String> = controllers
+        .iter()
+        .filter(|c| c.get("jod").is_none())
+        .filter_map(name_of)
+        .collect();
+    if !unscored.is_empty() {
+        eprintln!("jod: no score yet for {}", unscored.join(", "));
+    }
+    let table = display_table(controllers);
+    write_json(&summary, summary_path)?;
+    let table_path = summary_path.with_file_name("table.md");
+    std::fs::write(&table_path, &table)
+        .with_context(|| format!("cannot write {}", table_path.display()))?;
+    Ok(table)
+}
+
+/// One method on the JOD plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JodPoint {
+    /// The controller's name in the summary.
+    pub name: String,
+    /// The bench's band, ms.
+    pub band_ms: [f64; 2],
+    pub displayed_fps: f64,
+    pub jod: f64,
+}
+
+/// The scored runs of a merged summary.
+fn plot_points(summary: &Value) -> Result<Vec<JodPoint>> {
+    let band = summary
+        .get("band_ms")
+        .and_then(Value::as_array)
+        .and_then(|b| Some([b.first()?.as_f64()?, b.get(1)?.as_f64()?]))
+        .context("no band_ms")?;
+    let controllers = summary
+        .get("controllers")
+        .and_then(Value::as_array)
+        .context("no controllers")?;
+    let points: Vec<JodPoint> = controllers
+        .iter()
+        .filter_map(|c| {
+            Some(JodPoint {
+                name: c.get("name")?.as_str()?.to_string(),
+                band_ms: band,
+                displayed_fps: c.get("displayed_fps")?.as_f64()?,
+                jod: c.get("jod")?.as_f64()?,
+            })
+        })
+        .collect();
+    if points.is_empty() {
+        bail!("no run has both displayed_fps and jod: merge the JOD scores first");
+    }
+    Ok(points)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("steadyray-jod-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn viewing() -> Value {
+        json!({"name": "standard_fhd", "diagonal_in": 24.0, "resolution": [1920, 1080], "distance_m": 0.6})
+    }
+
+    /// A hand-made summary of a real-clock bench with two runs.
+    fn summary() -> Value {
+        json!({
+            "clock": "real",
+            "band_ms": [15.0, 20.0],
+            "viewing": viewing(),
+            "controllers": [
+                {"name": "fixed S=1 R=16", "displayed_fps": 59.0, "in_band_pct": 10.0},
+                {"name": "predictive", "displayed_fps": 31.5, "in_band_pct": 90.0}
+            ]
+        })
+    }
+
+    fn write(dir: &Path, name: &str, value: &Value) -> PathBuf {
+        let path = dir.join(name);
+        std::fs::write(&path, value.to_string()).unwrap();
+        path
+    }
+
+    #[test]
+    fn scores_land_on_their_runs_and_in_the_table() {
+        let dir = scratch("merge");
+        let summary_path = write(&dir, "summary.json", &summary());
+        let scores =
+            json!({"viewing": viewing(), "jod": {"predictive": 8.25, "fixed S=1 R=16": 7.5}});
+        let scores_path = write(&dir, "jod.json", &scores);
+        let table = merge(&scores_path, &summary_path).unwrap();
+        let merged = read_json(&summary_path).unwrap();
+        assert_eq!(merged["controllers"][0]["jod"], json!(7.5));
+        assert_eq!(merged["controllers"][1]["jod"], json!(8.25));
+        assert_eq!(
+            merged["controllers"][1]["in_band_pct"],
+            json!(90.0),
+            "the rest stays"
+        );
+        let predictive_row = table
+            .lines()
+            .find(|l| l.starts_with("| predictive"))
+            .unwrap();
+        assert!(predictive_row.ends_with("| 8.25 |"), "{predictive_row}");
+        assert_eq!(
+            std::fs::read_to_string(dir.join("table.md")).unwrap(),
+            table
+        );
+        let points = plot_points(&merged).unwrap();
+        assert_eq!(points.len(), 2);
+        assert_eq!((points[1].displayed_fps, points[1].jod), (31.5, 8.25));
+    }
+
+    #[test]
+    fn a_partial_score_list_merges_and_leaves_the_others() {
+        let dir = scratch("partial");
+        let summary_path = write(&dir, "summary.json", &summary());
+        let scores_path = write(
+            &dir,
+            "jod.json",
+            &json!({"viewing": viewing(), "jod": {"predictive": 8.0}}),
+        );
+        let table = merge(&scores_path, &summary_path).unwrap();
+        let merged = read_json(&summary_path).unwrap();
+        assert!(merged["controllers"][0].get("jod").is_none());
+        let fixed_row = table.lines().find(|l| l.starts_with("| fixed")).unwrap();
+        assert!(fixed_row.ends_with("| - |"), "{fixed_row}");
+    }
+
+    #[test]
+    fn mismatches_are_refused_and_nothing_is_written() {
+        let dir = scratch("refuse");
+        let original = summary();
+        let summary_path = write(&dir, "summary.json", &original);
+        let cases = [
+            (
+                json!({"viewing": viewing(), "jod": {"hysteresis": 8.0}}),
+                "hysteresis",
+            ),
+            (
+                json!({"viewing": viewing(), "jod": {"predictive": "high"}}),
+                "not a number",
+            ),
+            (json!({"viewing": viewing()}), "no `jod`"),
+            (
+                json!({"viewing": {"name": "standard_4k"}, "jod": {"predictive": 8.0}}),
+                "viewing set-up",
+            ),
+        ];
+        for (scores, expected) in cases {
+            let scores_path = write(&dir, "jod.json", &scores);
+            let err = format!("{:#}", merge(&scores_path, &summary_path).unwrap_err());
+            assert!(err.contains(expected), "{err}");
+            assert_eq!(read_json(&summary_path).unwrap(), original);
+            assert!(!dir.join("table.md").exists());
+        }
+        let frames_clock = write(
+            &dir,
+            "frames.json",
+            &json!({"clock": "frames", "controllers": []}),
+        );
+        let scores_path = write(&dir, "jod.json", &json!({"viewing": viewing(), "jod": {}}));
+        let err = merge(&scores_path, &frames_clock).unwrap_err().to_string();
+        assert!(err.contains("--clock real"), "{err}");
+        std::fs::write(dir.join("broken.json"), "{ not json").unwrap();
+        let err = merge(&dir.join("broken.json"), &summary_path)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("not valid JSON"), "{err}");
+    }
+}

@@ -1,0 +1,248 @@
+//! `steadyray bench --clock real` on the simulated renderer (its fake clock): the frames
+//! rendered and the refreshes that show them are what the display model gives for the
+//! measured times, and bad display settings are clear errors that leave nothing behind.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
+
+const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "steadyray-bench-real-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn bench(args: &[&str], out: &Path) -> Output {
+    Command::new(BIN)
+        .args(["bench", "--simulate", "--clock", "real", "--out"])
+        .arg(out)
+        .args(args)
+        .output()
+        .expect("cannot run steadyray")
+}
+
+/// frames.csv's rows of one controller: (tp_ms, hand_over_ms, start_ms, visible_ms).
+fn rows(out: &Path, controller: &str) -> Vec<[f64; 4]> {
+    let csv = std::fs::read_to_string(out.join("frames.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let cols = ["tp_ms", "hand_over_ms", "start_ms", "visible_ms"].map(col);
+    lines
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|f| f[0] == controller)
+        .map(|f| cols.map(|c| f[c].parse::<f64>().unwrap()))
+        .collect()
+}
+
+#[test]
+fn frames_and_refreshes_are_what_the_display_model_says() {
+    let out = scratch("model");
+    let output = bench(
+        &[
+            "--duration",
+            "2",
+            "--controllers",
+            "fixed,predictive",
+            "--no-best-fixed",
+        ],
+        &out,
+    );
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["clock"], "real");
+    assert_eq!(summary["display"]["mode"], "vsync");
+    let mut rendered = Vec::new();
+    for c in summary["controllers"].as_array().unwrap() {
+        let name = c["name"].as_str().unwrap();
+        let rows = rows(&out, name);
+        // Replay the display model on the measured times (as written, to 4 decimals).
+        let mut clock =
+            RealClock::new(DisplayConfig::new(60.0, SyncMode::Vsync).unwrap(), 2.0).unwrap();
+        for [tp, hand_over, start, visible] in &rows {
+            let slot = clock.next_frame().expect("the model starts this frame too");
+            assert!(
+                (slot.start_ms - start).abs() < 1e-3,
+                "{name}: {slot:?} vs {start}"
+            );
+            let frame = clock.present(*tp, *hand_over).unwrap();
+            assert!((frame.visible_ms - visible).abs() < 1e-3, "{name}");
+        }
+        assert!(
+            clock.next_frame().is_none(),
+            "{name}: the model starts no more frames"
+        );
+        let figures = DisplayFigures::of(&clock.finish());
+        assert_eq!(c["frames_rendered"], figures.frames_rendered, "{name}");
+        assert_eq!(c["frames_shown"], figures.frames_shown, "{name}");
+        let close = |key: &str, v: f64| (c[key].as_f64().unwrap() - v).abs() < 1e-6;
+        assert!(close("displayed_fps", figures.displayed_fps), "{name}");
+        assert!(close("repeated_pct", figures.repeated_pct), "{name}");
+        assert!(
+            close("latency_ms_mean", figures.latency_ms_mean.unwrap()),
+            "{name}"
+        );
+        rendered.push(figures.frames_rendered);
+    }
+    // The simulated fixed S=1 takes a few ms a frame: a frame every refresh, 120 in 2 s. The
+    // predictive controller fills its 15-20 ms band: with the hand-over most frames miss a
+    // refresh, and it renders fewer frames in the same time.
+    assert_eq!(rendered[0], 120);
+    assert!(rendered[1] < 100, "{rendered:?}");
+    let table = std::fs::read_to_string(out.join("table.md")).unwrap();
+    assert!(table.contains("| predictive |"), "{table}");
+}
+
+#[test]
+fn bad_display_settings_are_clear_errors_and_write_nothing() {
+    let out = scratch("bad");
+    let cases: [(&[&str], &str); 6] = [
+        (&["--refresh", "0"], "refresh rate 0"),
+        (&["--refresh", "NaN"], "refresh rate NaN"),
+        (&["--duration", "-1"], "duration -1"),
+        (&["--duration", "NaN"], "duration NaN"),
+        (&["--vrr", "60-48"], "MIN-MAX"),
+        (&["--vrr", "48-144", "--vsync", "off"], "--vsync"),
+    ];
+    for (args, expected) in cases {
+        let output = bench(args, &out);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{args:?} was accepted");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    }
+    // An unwritable video folder fails before any run, not after them.
+    let output = Command::new(BIN)
+        .args([
+            "bench",
+            "--backend",
+            "cpu",
+            "--clock",
+            "real",
+            "--video",
+            "/proc/steadyray",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.contains("--video: cannot"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains("bench: corridor"),
+        "no run started: {stderr}"
+    );
+    assert!(!out.exists());
+    let output = Command::new(BIN)
+        .args(["bench", "--simulate", "--duration", "1", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.contains("--clock real"),
+        "{stderr}"
+    );
+}
+
+/// A tiny CPU bench with --video and --quality: a complete video folder (every refresh of the
+/// screen and of the reference, timings, index) and the displayed FLIP in summary.json; a
+/// second bench reuses the references (outside a git checkout, whose uncommitted changes
+/// could have changed the renderer).
+#[test]
+fn video_and_displayed_quality_on_the_cpu_renderer() {
+    let (out, video) = (scratch("video-out"), scratch("video"));
+    let run = || {
+        let output = Command::new(BIN)
+            .current_dir(std::env::temp_dir())
+            .args([
+                "bench",
+                "--backend",
+                "cpu",
+                "--width",
+                "32",
+                "--height",
+                "18",
+            ])
+            .args(["--clock", "real", "--duration", "0.1", "--warmup", "1"])
+            .args([
+                "--controllers",
+                "fixed",
+                "--no-best-fixed",
+                "--reference-spp",
+                "4",
+            ])
+            .args(["--quality", "--every", "2", "--video"])
+            .arg(&video)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+        assert!(output.status.success(), "{stderr}");
+        stderr
+    };
+    let first = run();
+    assert!(!first.contains("reusing"), "{first}");
+    let index: Value =
+        serde_json::from_str(&std::fs::read_to_string(video.join("video.json")).unwrap()).unwrap();
+    assert_eq!(index["refreshes"], 6);
+    assert_eq!(index["viewing"]["name"], "standard_fhd");
+    let folder = video.join(index["runs"][0]["folder"].as_str().unwrap());
+    for i in 0..6 {
+        let name = format!("frame_{i:05}.png");
+        for dir in [folder.join("displayed"), video.join("reference")] {
+            let picture = image::open(dir.join(&name)).unwrap();
+            assert_eq!((picture.width(), picture.height()), (32, 18));
+        }
+    }
+    assert!(!folder.join("displayed").join("frame_00006.png").exists());
+    let timings = std::fs::read_to_string(folder.join("timings.csv")).unwrap();
+    assert_eq!(timings.lines().count(), 7, "{timings}");
+    assert!(
+        timings
+            .lines()
+            .nth(1)
+            .unwrap()
+            .starts_with("0,0.0000,warmup"),
+        "{timings}"
+    );
+    let y4m = std::fs::read(folder.join("displayed.y4m")).unwrap();
+    assert!(y4m.starts_with(b"YUV4MPEG2 W32 H18 F60:1"));
+    let header = y4m.iter().position(|&b| b == b'\n').unwrap() + 1;
+    assert_eq!(
+        y4m.len() - header,
+        6 * (6 + 3 * 32 * 18),
+        "six frames of 4:4:4"
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let fixed = &summary["controllers"][0];
+    assert_eq!(fixed["displayed_samples"], 3, "refreshes 0, 2 and 4");
+    let flip = fixed["displayed_flip_mean"].as_f64().unwrap();
+    assert!(flip > 0.0 && flip < 0.5, "{flip}");
+    assert!(fixed["frame_flip_mean"].as_f64().unwrap() <= flip + 1e-9);
+    let second = run();
+    assert!(second.contains("reusing the references"), "{second}");
+    let again: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        again["controllers"][0]["displayed_flip_mean"],
+        fixed["displayed_flip_mean"]
+    );
+}
