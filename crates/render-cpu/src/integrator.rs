@@ -3,7 +3,7 @@
 use crate::material::Mat;
 use crate::optics::{fresnel, reflect, refract_with, snell};
 use crate::ray::{EPS, Ray, T_MIN};
-use crate::world::World;
+use crate::world::{Prim, World};
 use glam::Vec3A;
 use steadyray_render::sampling::branch_random;
 
@@ -14,6 +14,25 @@ pub(crate) trait PathSink {
     fn ray(&mut self, depth: u32, ray: &Ray);
     /// A shadow ray traced toward a light.
     fn shadow_ray(&mut self);
+    /// A ray of the chain hit a surface (the temporal mode records sample 0's path).
+    #[inline]
+    fn hit(&mut self, _hit: &PathHit) {}
+    /// A ray of the chain left the scene.
+    #[inline]
+    fn miss(&mut self) {}
+}
+
+/// A surface a chain's ray reached, and what the chain does there.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PathHit {
+    pub t: f32,
+    pub prim: Prim,
+    /// The geometric normal flipped to face the ray.
+    pub normal: Vec3A,
+    /// The chain goes on by a mirror reflection.
+    pub reflects: bool,
+    /// The chain goes on through a dielectric (reflected or refracted by Fresnel).
+    pub dielectric: bool,
 }
 
 /// What identifies a sample for `branch_random`: pixel and sample index.
@@ -38,6 +57,7 @@ pub(crate) fn trace<S: PathSink>(
     loop {
         sink.ray(depth, &ray);
         let Some(hit) = world.closest_hit(&ray) else {
+            sink.miss();
             return w * world.background;
         };
         let p = ray.at(hit.t);
@@ -45,7 +65,15 @@ pub(crate) fn trace<S: PathSink>(
         let entering = outward.dot(ray.dir) < 0.0;
         let n = if entering { outward } else { -outward };
         let last = depth == max_depth;
-        match *world.material(hit.prim) {
+        let material = *world.material(hit.prim);
+        sink.hit(&PathHit {
+            t: hit.t,
+            prim: hit.prim,
+            normal: n,
+            reflects: !last && matches!(material, Mat::Mirror { .. }),
+            dielectric: !last && matches!(material, Mat::Dielectric { .. }),
+        });
+        match material {
             Mat::Emissive { radiance } => return w * radiance,
             Mat::Diffuse { albedo, checker } => {
                 let albedo = match checker {

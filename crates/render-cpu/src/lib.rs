@@ -14,6 +14,7 @@ mod quad;
 mod ray;
 mod render;
 mod sphere;
+mod temporal;
 mod triangle;
 mod world;
 
@@ -22,20 +23,24 @@ pub use ray::{EPS, T_MIN};
 
 use glam::{Vec3, Vec3A};
 use integrator::{SampleId, trace};
+use render::{FrameOutputs, SamplePattern};
 use std::time::Instant;
+use steadyray_render::temporal::sample_base;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, MAX_DEPTH, RenderError, RenderSettings, Renderer,
-    SettingsError, TimingSource, check_time,
+    SettingsError, TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
+use temporal::History;
 use world::World;
 
-/// The CPU renderer: a prepared scene, its own rayon thread pool, and the image of the last
-/// frame (reused across frames of the same size).
+/// The CPU renderer: a prepared scene, its own rayon thread pool, the image of the last
+/// frame (reused across frames of the same size) and, in the temporal mode, the history.
 pub struct CpuRenderer {
     pool: rayon::ThreadPool,
     world: Option<World>,
     image: Option<Image>,
+    history: Option<History>,
 }
 
 impl Default for CpuRenderer {
@@ -67,6 +72,7 @@ impl CpuRenderer {
             pool,
             world: None,
             image: None,
+            history: None,
         }
     }
 
@@ -122,6 +128,7 @@ impl Renderer for CpuRenderer {
 
     fn load_scene(&mut self, scene: &Scene) -> Result<(), RenderError> {
         self.world = Some(World::new(scene)?);
+        self.reset_history();
         Ok(())
     }
 
@@ -135,15 +142,46 @@ impl Renderer for CpuRenderer {
         check_time(time_s)?;
         let world = self.world.as_ref().ok_or(RenderError::NoScene)?;
         let (width, height) = (settings.width, settings.height);
-        let image = match &mut self.image {
-            Some(img) if img.width == width && img.height == height => img,
-            slot => slot.insert(Image::new(width, height)),
-        };
+        if let Some(history) = &self.history {
+            history.clock.settings().check(settings)?;
+        }
         let start = Instant::now();
-        let frame = camera.frame(width, height);
-        let counts = self
-            .pool
-            .install(|| render::render_frame(world, &frame, settings, &mut image.pixels));
+        let counts = match &mut self.history {
+            None => {
+                let image = match &mut self.image {
+                    Some(img) if img.width == width && img.height == height => img,
+                    slot => slot.insert(Image::new(width, height)),
+                };
+                let frame = camera.frame(width, height);
+                let outputs = FrameOutputs {
+                    pixels: &mut image.pixels,
+                    geometry: None,
+                };
+                self.pool.install(|| {
+                    render::render_frame(world, &frame, settings, SamplePattern::default(), outputs)
+                })
+            }
+            Some(history) => {
+                // Rays follow the history's aspect, so every sample lies where it lands.
+                let size = history.clock.settings();
+                let frame = camera.frame(size.width, size.height);
+                let temporal = history.clock.advance(frame);
+                let pattern = SamplePattern {
+                    jitter: temporal.jitter,
+                    sample_base: sample_base(temporal.index),
+                };
+                history.prepare(width, height);
+                self.pool.install(|| {
+                    let outputs = FrameOutputs {
+                        pixels: &mut history.low,
+                        geometry: Some(&mut history.low_geometry),
+                    };
+                    let counts = render::render_frame(world, &frame, settings, pattern, outputs);
+                    history.resolve(frame, temporal, (width, height));
+                    counts
+                })
+            }
+        };
         let rays = counts.ray_counts(settings.max_depth);
         let ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(FrameStats {
@@ -158,6 +196,23 @@ impl Renderer for CpuRenderer {
     }
 
     fn read_image(&mut self) -> Result<Image, RenderError> {
-        self.image.clone().ok_or(RenderError::NoFrame)
+        match &self.history {
+            Some(history) => history.image().ok_or(RenderError::NoFrame),
+            None => self.image.clone().ok_or(RenderError::NoFrame),
+        }
+    }
+
+    fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {
+        if let Some(settings) = &temporal {
+            settings.validate()?;
+        }
+        self.history = temporal.map(History::new);
+        Ok(())
+    }
+
+    fn reset_history(&mut self) {
+        if let Some(history) = &mut self.history {
+            history.clock.reset();
+        }
     }
 }

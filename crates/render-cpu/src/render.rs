@@ -3,12 +3,22 @@
 
 use crate::integrator::{PathSink, SampleId, trace};
 use crate::ray::Ray;
+use crate::temporal::{Geometry, GeometrySink};
 use crate::world::World;
 use glam::Vec3A;
 use rayon::prelude::*;
 use steadyray_render::sampling::{sample_offset, samples_for_pixel};
+use steadyray_render::temporal::jittered;
 use steadyray_render::{MAX_DEPTH, RayCounts, RenderSettings};
 use steadyray_scene::camera::CameraFrame;
+
+/// Where a frame's samples go: the temporal mode's jitter and first branch sample index
+/// (`docs/temporal.md`); zero outside it, which leaves the pattern of `docs/shading.md`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct SamplePattern {
+    pub jitter: [f32; 2],
+    pub sample_base: u32,
+}
 
 /// Ray counts of one tile: fixed size, so counting never allocates.
 #[derive(Clone, Copy, Debug)]
@@ -57,51 +67,87 @@ impl PathSink for TileCounts {
     }
 }
 
-/// Renders every pixel of `pixels` (row-major, `settings.width` wide) in parallel on the
-/// current rayon pool. `settings` must be valid.
+/// The frame's outputs: radiance per pixel, and in the temporal mode the geometry record of
+/// each pixel's sample 0; both row-major, `settings.width` wide.
+pub(crate) struct FrameOutputs<'a> {
+    pub pixels: &'a mut [[f32; 3]],
+    pub geometry: Option<&'a mut [Geometry]>,
+}
+
+/// Renders every pixel of the frame in parallel on the current rayon pool. `settings` must
+/// be valid.
 pub(crate) fn render_frame(
     world: &World,
     frame: &CameraFrame,
     settings: &RenderSettings,
-    pixels: &mut [[f32; 3]],
+    pattern: SamplePattern,
+    outputs: FrameOutputs<'_>,
 ) -> TileCounts {
     let width = settings.width as usize;
-    pixels
-        .par_chunks_mut(width)
-        .enumerate()
-        .map(|(py, row)| {
-            let mut counts = TileCounts::default();
-            render_row(world, frame, settings, py as u32, row, &mut counts);
-            counts
-        })
-        .reduce(TileCounts::default, TileCounts::merged)
+    let render = |py: usize, row: &mut [[f32; 3]], geometry: Option<&mut [Geometry]>| {
+        let mut counts = TileCounts::default();
+        let row = Row {
+            py: py as u32,
+            pixels: row,
+            geometry,
+        };
+        render_row(world, frame, settings, pattern, row, &mut counts);
+        counts
+    };
+    let rows = outputs.pixels.par_chunks_mut(width).enumerate();
+    match outputs.geometry {
+        Some(geometry) => rows
+            .zip(geometry.par_chunks_mut(width))
+            .map(|((py, row), g)| render(py, row, Some(g)))
+            .reduce(TileCounts::default, TileCounts::merged),
+        None => rows
+            .map(|(py, row)| render(py, row, None))
+            .reduce(TileCounts::default, TileCounts::merged),
+    }
 }
 
-/// One row of pixels: each pixel is the mean radiance of its eye samples.
+/// One row of a frame's outputs.
+struct Row<'a> {
+    py: u32,
+    pixels: &'a mut [[f32; 3]],
+    geometry: Option<&'a mut [Geometry]>,
+}
+
+/// One row of pixels: each pixel is the mean radiance of its eye samples; sample 0 records
+/// the pixel's geometry when asked to.
 fn render_row(
     world: &World,
     frame: &CameraFrame,
     settings: &RenderSettings,
-    py: u32,
-    row: &mut [[f32; 3]],
+    pattern: SamplePattern,
+    mut row: Row<'_>,
     counts: &mut TileCounts,
 ) {
     let (width, height) = (settings.width, settings.height);
     let eye = Vec3A::from(frame.eye);
-    for (px, out) in (0u32..).zip(row.iter_mut()) {
+    let py = row.py;
+    for (px, out) in (0u32..).zip(row.pixels.iter_mut()) {
         let n = samples_for_pixel(px, py, settings.spp);
         let mut sum = Vec3A::ZERO;
         for sample in 0..n {
-            let (u, v) = sample_offset(sample, n);
-            let dir = frame.ray_dir(px, py, u, v, width, height);
-            let id = SampleId { px, py, sample };
-            sum += trace(
-                world,
-                Ray::new(eye, dir.into()),
-                id,
-                settings.max_depth,
-                counts,
-            );
+            let (u, v) = jittered(sample_offset(sample, n), pattern.jitter);
+            let dir = Vec3A::from(frame.ray_dir(px, py, u, v, width, height));
+            let id = SampleId {
+                px,
+                py,
+                sample: sample + pattern.sample_base,
+            };
+            let ray = Ray::new(eye, dir);
+            let depth = settings.max_depth;
+            sum += match row.geometry.as_deref_mut() {
+                Some(geometry) if sample == 0 => {
+                    let mut sink = GeometrySink::new(counts, world, eye, dir);
+                    let radiance = trace(world, ray, id, depth, &mut sink);
+                    geometry[px as usize] = sink.finish();
+                    radiance
+                }
+                _ => trace(world, ray, id, depth, counts),
+            };
         }
         *out = (sum / n as f32).to_array();
     }

@@ -180,6 +180,27 @@ impl World {
         &self.materials[m as usize]
     }
 
+    /// The temporal mode's surface id of `prim` (`docs/temporal.md`): spheres, quads and
+    /// planes numbered in that order (each kind in object order), every mesh triangle one id
+    /// after them.
+    #[inline]
+    pub fn surface_id(&self, prim: Prim) -> u32 {
+        let (spheres, quads) = (self.spheres.len() as u32, self.quads.len() as u32);
+        match prim {
+            Prim::Sphere(i) => i,
+            Prim::Quad(i) => spheres + i,
+            Prim::Plane(i) => spheres + quads + i,
+            Prim::Triangle(_) => spheres + quads + self.planes.len() as u32,
+        }
+    }
+
+    /// Whether `prim` is flat (a quad or a plane): a mirror image in it is a virtual scene
+    /// that reprojects exactly.
+    #[inline]
+    pub fn is_flat(&self, prim: Prim) -> bool {
+        matches!(prim, Prim::Quad(_) | Prim::Plane(_))
+    }
+
     /// Whether `p` on `prim` lies on an odd checker square of `size`: surface (u, v) for
     /// quads and planes, the 3D checker for spheres and meshes.
     #[inline]

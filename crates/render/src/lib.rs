@@ -1,16 +1,19 @@
 //! What every steadyray renderer backend shares: the [`Renderer`] trait, the settings of a
 //! frame, what a frame reports, the linear image, and the rules both backends must follow
-//! bit for bit (sample pattern, fractional-S dither, branch random numbers, tone map).
-//! `docs/shading.md` is the prose version of the same contract.
+//! bit for bit (sample pattern, fractional-S dither, branch random numbers, tone map, and the
+//! temporal mode's jitter, landing and reprojection rules). `docs/shading.md` and
+//! `docs/temporal.md` are the prose version of the same contract.
 
 pub mod image;
 pub mod renderer;
 pub mod sampling;
 pub mod settings;
 pub mod stats;
+pub mod temporal;
 pub mod tonemap;
 
 pub use image::Image;
 pub use renderer::{BackendInfo, RenderError, Renderer, check_time};
 pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError};
 pub use stats::{FrameStats, RayCounts, TimingSource};
+pub use temporal::TemporalSettings;

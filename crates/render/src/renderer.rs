@@ -1,6 +1,6 @@
 //! The interface every renderer backend implements.
 
-use crate::{FrameStats, Image, RenderSettings, SettingsError};
+use crate::{FrameStats, Image, RenderSettings, SettingsError, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 use thiserror::Error;
 
@@ -57,6 +57,15 @@ pub trait Renderer {
         time_s: f64,
         settings: &RenderSettings,
     ) -> Result<FrameStats, RenderError>;
-    /// The linear image of the last rendered frame.
+    /// The linear image of the last rendered frame: in the temporal mode, the accumulated
+    /// history at its full size.
     fn read_image(&mut self) -> Result<Image, RenderError>;
+    /// Turns the temporal mode on, with a history of `temporal`'s size, or off (`None`); in
+    /// either case any history starts over. In the temporal mode every frame is jittered,
+    /// rendered at its own settings' size (at most the history's) and accumulated into the
+    /// history by the rules of `docs/temporal.md`, inside the frame's time. Fails on an
+    /// empty or too large history.
+    fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError>;
+    /// Forgets the history (a camera cut): the next frame starts a new one.
+    fn reset_history(&mut self);
 }

@@ -28,6 +28,16 @@ pub enum SettingsError {
     BadSpp(f32),
     #[error("reflection depth R = {0} is out of range: at most {MAX_DEPTH}")]
     BadDepth(u32),
+    #[error(
+        "a {width}x{height} frame cannot be accumulated into a {history_width}x{history_height} \
+         history: temporal frames are at most the history's size"
+    )]
+    LargerThanHistory {
+        width: u32,
+        height: u32,
+        history_width: u32,
+        history_height: u32,
+    },
 }
 
 impl RenderSettings {

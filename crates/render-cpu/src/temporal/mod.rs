@@ -1,0 +1,92 @@
+//! The CPU's temporal mode (`docs/temporal.md`): the history of a renderer, the frame's
+//! geometry records, and the resolve that accumulates each frame into the history.
+
+mod geometry;
+mod resolve;
+
+pub(crate) use geometry::{Geometry, GeometrySink};
+
+use rayon::prelude::*;
+use resolve::Inputs;
+use steadyray_render::temporal::{HistoryClock, TemporalFrame};
+use steadyray_render::{Image, TemporalSettings};
+use steadyray_scene::camera::CameraFrame;
+
+/// A renderer's temporal state: the history (radiance and age per pixel, and the geometry
+/// it was made of), the frame being accumulated, and the clock that says which frame of
+/// the history comes next.
+pub(crate) struct History {
+    pub clock: HistoryClock,
+    /// The frame as rendered (its own size), then resolved into the history.
+    pub low: Vec<[f32; 3]>,
+    pub low_geometry: Vec<Geometry>,
+    colour: Vec<[f32; 4]>,
+    geometry: Vec<Geometry>,
+    next_colour: Vec<[f32; 4]>,
+    next_geometry: Vec<Geometry>,
+    /// Whether a frame was accumulated since the mode was set.
+    accumulated: bool,
+}
+
+impl History {
+    /// An empty history of `settings`' size.
+    pub fn new(settings: TemporalSettings) -> Self {
+        let pixels = settings.width as usize * settings.height as usize;
+        Self {
+            clock: HistoryClock::new(settings),
+            low: Vec::new(),
+            low_geometry: Vec::new(),
+            colour: vec![[0.0; 4]; pixels],
+            geometry: vec![Geometry::default(); pixels],
+            next_colour: vec![[0.0; 4]; pixels],
+            next_geometry: vec![Geometry::default(); pixels],
+            accumulated: false,
+        }
+    }
+
+    /// Makes room for a `width` × `height` frame.
+    pub fn prepare(&mut self, width: u32, height: u32) {
+        let pixels = width as usize * height as usize;
+        self.low.resize(pixels, [0.0; 3]);
+        self.low_geometry.resize(pixels, Geometry::default());
+    }
+
+    /// Accumulates the rendered frame (`low_size`, camera frame `camera` for the history's
+    /// size) into the history, in parallel on the current rayon pool.
+    pub fn resolve(&mut self, camera: CameraFrame, frame: TemporalFrame, low_size: (u32, u32)) {
+        let settings = self.clock.settings();
+        let inputs = Inputs {
+            low: &self.low,
+            low_geometry: &self.low_geometry,
+            low_size,
+            history: &self.colour,
+            geometry: &self.geometry,
+            size: (settings.width, settings.height),
+            camera,
+            frame,
+        };
+        let width = settings.width as usize;
+        self.next_colour
+            .par_chunks_mut(width)
+            .zip(self.next_geometry.par_chunks_mut(width))
+            .enumerate()
+            .for_each(|(y, (colours, geometries))| {
+                for (x, (colour, geometry)) in colours.iter_mut().zip(geometries).enumerate() {
+                    (*colour, *geometry) = inputs.resolve(x as u32, y as u32);
+                }
+            });
+        std::mem::swap(&mut self.colour, &mut self.next_colour);
+        std::mem::swap(&mut self.geometry, &mut self.next_geometry);
+        self.accumulated = true;
+    }
+
+    /// The accumulated image, if a frame was accumulated.
+    pub fn image(&self) -> Option<Image> {
+        let settings = self.clock.settings();
+        self.accumulated.then(|| Image {
+            width: settings.width,
+            height: settings.height,
+            pixels: self.colour.iter().map(|&[r, g, b, _]| [r, g, b]).collect(),
+        })
+    }
+}

@@ -1,0 +1,318 @@
+//! The temporal mode (`docs/temporal.md`) on the CPU reference: a static view converges to
+//! the reference, history never survives a disocclusion, cuts and resizes start it over,
+//! non-finite samples never enter it, and frames at a reduced scale land at their true
+//! sub-pixel positions.
+
+mod common;
+
+use common::*;
+use steadyray_quality::{Rgb8Image, flip};
+use steadyray_render::{Image, RenderError, Renderer, SettingsError, TemporalSettings};
+use steadyray_render_cpu::CpuRenderer;
+use steadyray_scene::{Camera, Checker, Material, Scene, Shape, Vec3, builtin};
+
+fn rgb8(image: &Image) -> Rgb8Image {
+    Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba()).unwrap()
+}
+
+fn flip_against(reference: &Image, test: &Image) -> f64 {
+    flip(&rgb8(reference), &rgb8(test)).unwrap().mean()
+}
+
+/// A temporal renderer of `scene` with a `width` × `height` history.
+fn temporal(scene: &Scene, width: u32, height: u32) -> CpuRenderer {
+    let mut r = loaded(scene);
+    r.set_temporal(Some(TemporalSettings { width, height }))
+        .unwrap();
+    r
+}
+
+/// Renders `frames` temporal frames of `camera` at scale `scale` and returns the history.
+fn accumulate(r: &mut CpuRenderer, camera: &Camera, frames: u32, spp: f32, scale: f32) -> Image {
+    let (w, h) = (160, 90);
+    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
+    for _ in 0..frames {
+        r.render(camera, 0.0, &settings(side(w), side(h), spp, 8))
+            .unwrap();
+    }
+    r.read_image().unwrap()
+}
+
+/// The corridor view of the README: mirror walls, glass and chrome spheres.
+fn corridor_reference() -> (Scene, Image) {
+    let scene = builtin("corridor").unwrap();
+    let reference = render(&scene, settings(160, 90, 256.0, 8));
+    (scene, reference)
+}
+
+#[test]
+fn a_static_view_converges_like_supersampling() {
+    let (scene, reference) = corridor_reference();
+    let single = |spp| flip_against(&reference, &render(&scene, settings(160, 90, spp, 8)));
+    let (one, sixteen) = (single(1.0), single(16.0));
+    let mut r = temporal(&scene, 160, 90);
+    let accumulated = flip_against(&reference, &accumulate(&mut r, &scene.camera, 16, 1.0, 1.0));
+    eprintln!("FLIP: S=1 {one:.4}, S=16 {sixteen:.4}, 16 frames of S=1 {accumulated:.4}");
+    assert!(
+        accumulated <= 1.1 * sixteen,
+        "16 accumulated frames at S=1: FLIP {accumulated} against {sixteen} for one frame at S=16"
+    );
+    assert!(sixteen < 0.7 * one, "the test view needs supersampling");
+}
+
+#[test]
+fn the_first_frame_is_the_plain_frame() {
+    let scene = builtin("corridor").unwrap();
+    let plain = render(&scene, settings(64, 36, 2.5, 6));
+    let mut r = temporal(&scene, 64, 36);
+    r.render(&scene.camera, 0.0, &settings(64, 36, 2.5, 6))
+        .unwrap();
+    assert_eq!(r.read_image().unwrap(), plain);
+}
+
+#[test]
+fn a_reduced_scale_lands_at_full_resolution() {
+    let (scene, reference) = corridor_reference();
+    let full = flip_against(&reference, &render(&scene, settings(160, 90, 1.0, 8)));
+    let mut r = temporal(&scene, 160, 90);
+    let half = accumulate(&mut r, &scene.camera, 32, 1.0, 0.5);
+    assert_eq!((half.width, half.height), (160, 90));
+    let half = flip_against(&reference, &half);
+    eprintln!("FLIP: one full frame {full:.4}, 32 frames at scale 0.5 {half:.4}");
+    assert!(
+        half < 0.8 * full,
+        "32 frames at scale 0.5 ({half}) must beat one full-scale frame ({full})"
+    );
+}
+
+/// Diffuse and ambient-lit only, so a pixel's value is its surface's albedo times the
+/// ambient term: a wall of two blues (no red) behind a pure red ball.
+fn wall_and_ball() -> Scene {
+    let materials = vec![
+        Material::Diffuse {
+            albedo: Vec3::new(0.0, 0.3, 0.9),
+            checker: Some(Checker {
+                size: 0.25,
+                albedo_b: Vec3::new(0.0, 0.6, 0.5),
+            }),
+        },
+        diffuse(Vec3::new(1.0, 0.0, 0.0)),
+    ];
+    let wall = Shape::Quad {
+        corner: Vec3::new(-20.0, -20.0, -10.0),
+        edge_u: Vec3::new(40.0, 0.0, 0.0),
+        edge_v: Vec3::new(0.0, 40.0, 0.0),
+    };
+    let objects = vec![(wall, 0), (sphere(Vec3::new(0.0, 0.0, -4.0), 1.0), 1)];
+    scene(materials, objects, Vec::new(), 1.0, Vec3::ZERO)
+}
+
+/// Whether the segment from `from` to `to` passes within `radius` of `centre`.
+fn passes_near(from: Vec3, to: Vec3, centre: Vec3, radius: f32) -> bool {
+    let d = to - from;
+    let t = ((centre - from).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+    (from + t * d - centre).length() < radius
+}
+
+#[test]
+fn no_history_survives_a_disocclusion() {
+    let scene = wall_and_ball();
+    let (w, h) = (160u32, 90u32);
+    let centre = Vec3::new(0.0, 0.0, -4.0);
+    for scale in [1.0f32, 0.5] {
+        let mut r = temporal(&scene, w, h);
+        let low = settings((w as f32 * scale) as u32, (h as f32 * scale) as u32, 1.0, 2);
+        let eye_at = |x: f32| {
+            Camera::look_at(
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x, 0.0, -1.0),
+                Vec3::Y,
+                60.0,
+            )
+        };
+        // The ball slides right across the view as the eye moves left: its old place is
+        // uncovered.
+        let (before, after) = (eye_at(0.0), eye_at(-1.5));
+        for _ in 0..12 {
+            r.render(&before, 0.0, &low).unwrap();
+        }
+        r.render(&after, 0.0, &low).unwrap();
+        let image = r.read_image().unwrap();
+        // A pixel two low-resolution pixels (or more) clear of the ball now, whose wall point
+        // was as far inside the ball's outline before: newly visible. A pixel spans
+        // 2·tan(30°)/h radians, 0.05 m at the ball.
+        let margin = 2.0 / scale * 4.0 * 2.0 * 30f32.to_radians().tan() / h as f32;
+        let frame = after.frame(w, h);
+        let (mut uncovered, mut red, mut blended) = (0, 0, 0);
+        for py in 0..h {
+            for px in 0..w {
+                let dir = frame.ray_dir(px, py, 0.5, 0.5, w, h);
+                let wall = after.eye + dir * (-10.0 / dir.z);
+                let [r, g, _] = image.get(px, py);
+                if passes_near(after.eye, wall, centre, 1.0 + margin) {
+                    continue;
+                }
+                if !passes_near(before.eye, wall, centre, 1.0 + margin) {
+                    // Wall seen before and now: its history stays, so checker edges are
+                    // blends of the two blues.
+                    blended += usize::from(r == 0.0 && g != 0.3 && g != 0.6);
+                } else if passes_near(before.eye, wall, centre, 1.0 - margin) {
+                    uncovered += 1;
+                    red += usize::from(r != 0.0);
+                }
+            }
+        }
+        eprintln!("scale {scale}: {uncovered} pixels uncovered, {red} with red history");
+        eprintln!("scale {scale}: {blended} wall pixels blend their history");
+        assert!(uncovered > 150, "scale {scale}: too few pixels uncovered");
+        assert_eq!(red, 0, "scale {scale}: the ball's history survived");
+        assert!(blended > 200, "scale {scale}: the wall's history must stay");
+    }
+}
+
+#[test]
+fn cuts_and_resizes_start_the_history_over() {
+    let scene = builtin("corridor").unwrap();
+    let set = settings(64, 36, 1.0, 6);
+    let first = |camera: &Camera, size: (u32, u32)| {
+        let mut fresh = temporal(&scene, size.0, size.1);
+        fresh.render(camera, 0.0, &set).unwrap();
+        fresh.read_image().unwrap()
+    };
+    let other = scene.camera_at(300, 720);
+    let mut r = temporal(&scene, 64, 36);
+    for k in 0..8 {
+        r.render(&scene.camera_at(k, 720), 0.0, &set).unwrap();
+    }
+    let kept = r.read_image().unwrap();
+    assert_ne!(
+        kept,
+        first(&scene.camera_at(7, 720), (64, 36)),
+        "history accumulates"
+    );
+    r.reset_history();
+    r.render(&other, 0.0, &set).unwrap();
+    assert_eq!(
+        r.read_image().unwrap(),
+        first(&other, (64, 36)),
+        "after a cut"
+    );
+    r.set_temporal(Some(TemporalSettings {
+        width: 96,
+        height: 54,
+    }))
+    .unwrap();
+    r.render(&other, 0.0, &set).unwrap();
+    assert_eq!(
+        r.read_image().unwrap(),
+        first(&other, (96, 54)),
+        "after a resize"
+    );
+    r.set_temporal(None).unwrap();
+    r.render(&other, 0.0, &set).unwrap();
+    let mut plain = loaded(&scene);
+    plain.render(&other, 0.0, &set).unwrap();
+    assert_eq!(
+        r.read_image().unwrap(),
+        plain.read_image().unwrap(),
+        "off again"
+    );
+}
+
+/// A scene with an infinitely bright ball and a ball of NaN radiance in front of a wall.
+fn poisoned() -> Scene {
+    let materials = vec![
+        diffuse(Vec3::splat(0.5)),
+        Material::Emissive {
+            radiance: Vec3::splat(f32::INFINITY),
+        },
+        Material::Emissive {
+            radiance: Vec3::new(f32::NAN, 0.0, 1.0),
+        },
+    ];
+    let wall = Shape::Quad {
+        corner: Vec3::new(-20.0, -20.0, -10.0),
+        edge_u: Vec3::new(40.0, 0.0, 0.0),
+        edge_v: Vec3::new(0.0, 40.0, 0.0),
+    };
+    let objects = vec![
+        (wall, 0),
+        (sphere(Vec3::new(-1.0, 0.0, -4.0), 0.5), 1),
+        (sphere(Vec3::new(1.0, 0.0, -4.0), 0.5), 2),
+    ];
+    scene(
+        materials,
+        objects,
+        vec![light(Vec3::new(0.0, 0.0, 0.0), 3.0)],
+        0.1,
+        Vec3::ZERO,
+    )
+}
+
+#[test]
+fn non_finite_samples_never_enter_the_history() {
+    let scene = poisoned();
+    let mut plain = loaded(&scene);
+    plain
+        .render(&scene.camera, 0.0, &settings(64, 36, 1.0, 2))
+        .unwrap();
+    let bad = plain.read_image().unwrap();
+    let bad_pixels = bad
+        .pixels
+        .iter()
+        .filter(|p| p.iter().any(|c| !c.is_finite()))
+        .count();
+    assert!(
+        bad_pixels > 20,
+        "the scene must produce non-finite samples ({bad_pixels})"
+    );
+    for scale in [1.0f32, 0.5] {
+        let mut r = temporal(&scene, 64, 36);
+        let set = settings((64.0 * scale) as u32, (36.0 * scale) as u32, 1.0, 2);
+        for k in 0..24u32 {
+            let x = 0.1 * k as f32;
+            let camera = Camera::look_at(
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x, 0.0, -1.0),
+                Vec3::Y,
+                60.0,
+            );
+            r.render(&camera, 0.0, &set).unwrap();
+            let image = r.read_image().unwrap();
+            let non_finite = image
+                .pixels
+                .iter()
+                .flatten()
+                .filter(|c| !c.is_finite())
+                .count();
+            assert_eq!(non_finite, 0, "scale {scale}, frame {k}");
+        }
+    }
+}
+
+#[test]
+fn bad_temporal_settings_are_errors() {
+    let scene = builtin("corridor").unwrap();
+    let mut r = loaded(&scene);
+    let err = r.set_temporal(Some(TemporalSettings {
+        width: 0,
+        height: 36,
+    }));
+    assert!(matches!(
+        err,
+        Err(RenderError::Settings(SettingsError::EmptyImage { .. }))
+    ));
+    r.set_temporal(Some(TemporalSettings {
+        width: 64,
+        height: 36,
+    }))
+    .unwrap();
+    let err = r
+        .render(&scene.camera, 0.0, &settings(65, 36, 1.0, 2))
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("at most the history's size"),
+        "{err}"
+    );
+    assert!(matches!(r.read_image(), Err(RenderError::NoFrame)));
+}

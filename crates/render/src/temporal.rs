@@ -1,0 +1,391 @@
+//! The temporal mode's rules that both backends follow bit for bit (`docs/temporal.md`;
+//! mirrored in `render-gpu/src/shaders/temporal.wgsl`): the sub-pixel jitter sequence, where a
+//! low-resolution sample lands in the full-resolution history, the reprojection of a point
+//! into a camera, the history filter's weights, and the constants of the history's
+//! acceptance, clamp and blend. The per-pixel pass itself is written once per backend
+//! (`render-cpu/src/temporal/`, `temporal.wgsl`) from these rules.
+
+use crate::{RenderSettings, SettingsError};
+use steadyray_scene::camera::CameraFrame;
+
+/// The most frames a pixel's history averages (its age is capped here, so the blend weight
+/// of a new sample never falls below 1 / (HISTORY_CAP + 1)).
+pub const HISTORY_CAP: f32 = 16.0;
+/// The cap on pixels whose reprojection is only approximate (glass, curved mirrors) while
+/// the eye moves: their reflected or refracted image has a parallax that the reprojected
+/// point does not have, so they keep a short history.
+pub const SPECULAR_CAP: f32 = 4.0;
+/// A history tap's surface is seen again where its point lies within this fraction of the
+/// distance to the previous eye from the tangent plane of a surface seen now.
+pub const PLANE_TOLERANCE: f32 = 0.02;
+/// History is rejected where the cosine between its normal and the current one is below
+/// this (60°).
+pub const NORMAL_COS: f32 = 0.5;
+/// The surface id of a path that leaves the scene.
+pub const MISS_ID: u32 = 0x3fff_ffff;
+/// Mask of the surface id in a geometry record's tag.
+pub const ID_MASK: u32 = 0x3fff_ffff;
+/// Tag bit of a geometry record whose reprojection is approximate (a dielectric or a curved
+/// mirror on the path).
+pub const APPROX_FLAG: u32 = 0x8000_0000;
+/// The branch random numbers of frame k of a history use sample indices
+/// `i + SAMPLE_STRIDE · (k mod 2^20)`, so that every frame chooses new dielectric branches
+/// (S is at most 4096, so indices of different frames never meet).
+pub const SAMPLE_STRIDE: u32 = 4096;
+/// The jitter sequence's generators in 0.32 fixed point: round(2^32 / φ₂) and
+/// round(2^32 / φ₂²), φ₂ the plastic number (the R2 sequence, Roberts 2018).
+const JITTER_STEP: [u32; 2] = [0xc13f_a9a9, 0x91e1_0da6];
+
+/// The temporal mode of a renderer: frames are accumulated into a history of this
+/// (full-resolution) size, whatever resolution each frame is rendered at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TemporalSettings {
+    pub width: u32,
+    pub height: u32,
+}
+
+impl TemporalSettings {
+    /// Checks the history's size as an image size.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        RenderSettings {
+            width: self.width,
+            height: self.height,
+            spp: 1.0,
+            max_depth: 0,
+        }
+        .validate()
+    }
+
+    /// Checks that a frame of `render` can be accumulated into this history: a valid history
+    /// size, and a frame no larger than it (temporal upsampling only scales up).
+    pub fn check(&self, render: &RenderSettings) -> Result<(), SettingsError> {
+        self.validate()?;
+        if render.width > self.width || render.height > self.height {
+            return Err(SettingsError::LargerThanHistory {
+                width: render.width,
+                height: render.height,
+                history_width: self.width,
+                history_height: self.height,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The jitter J_k in [0, 1)² of frame k of a history: J_0 = (0, 0), then the points of the R2
+/// sequence each followed by its mirror image about the pixel centre (frames 2m − 1 and 2m
+/// take point m and its mirror), so that the mean sample position over every odd number of
+/// frames is the pixel centre, as [`crate::sampling::sample_offset`] does within a frame
+/// (the plain sequence left the mean of 16 frames 0.09 pixel off centre: a shifted image,
+/// which FLIP scores as an error on every edge). Computed in 0.32 fixed point and rounded
+/// down to 24 bits, so it is exact and the same on every backend at any k.
+pub fn jitter(k: u32) -> [f32; 2] {
+    let m = k.div_ceil(2);
+    JITTER_STEP.map(|step| {
+        let point = m.wrapping_mul(step);
+        let u = if k % 2 == 0 {
+            point.wrapping_neg()
+        } else {
+            point
+        };
+        (u >> 8) as f32 * (1.0 / 16_777_216.0)
+    })
+}
+
+/// frac(t) = t - floor(t).
+#[inline]
+fn frac(t: f32) -> f32 {
+    t - t.floor()
+}
+
+/// The sub-pixel position of a sample whose frame-less position is `offset`
+/// ([`crate::sampling::sample_offset`]) in a frame of jitter `j`: frac(offset + j), so the
+/// samples stay inside their pixel. With J_0 it is `offset` exactly.
+#[inline]
+pub fn jittered(offset: (f32, f32), j: [f32; 2]) -> (f32, f32) {
+    (frac(offset.0 + j[0]), frac(offset.1 + j[1]))
+}
+
+/// Where a low-resolution pixel's value lands inside it: its centre moved by the jitter,
+/// frac(0.5 + J) per axis (the position of a single sample, S = 1).
+pub fn anchor(j: [f32; 2]) -> [f32; 2] {
+    [frac(0.5 + j[0]), frac(0.5 + j[1])]
+}
+
+/// The first sample index of frame k: `SAMPLE_STRIDE · (k mod 2^20)`.
+pub fn sample_base(k: u32) -> u32 {
+    (k & 0xf_ffff) * SAMPLE_STRIDE
+}
+
+/// The full-resolution column (or row) where low-resolution column `x` lands:
+/// floor((x + anchor) · full / low).
+#[inline]
+pub fn landing(x: u32, anchor: f32, full: u32, low: u32) -> u32 {
+    ((x as f32 + anchor) * full as f32 / low as f32).floor() as u32
+}
+
+/// The low-resolution column covering the centre of full-resolution column `x`:
+/// floor((x + 0.5) · low / full), at most low - 1.
+#[inline]
+pub fn covering(x: u32, full: u32, low: u32) -> u32 {
+    (((x as f32 + 0.5) * low as f32 / full as f32).floor() as u32).min(low - 1)
+}
+
+/// The low-resolution column whose value lands in full-resolution column `x`, if any: the
+/// first of covering − 1, covering, covering + 1 whose [`landing`] is `x`.
+#[inline]
+pub fn landed_from(x: u32, anchor: f32, full: u32, low: u32) -> Option<u32> {
+    let c = covering(x, full, low);
+    [c.wrapping_sub(1), c, c + 1]
+        .into_iter()
+        .find(|&s| s < low && landing(s, anchor, full, low) == x)
+}
+
+/// The Catmull–Rom weights of the four taps at offsets -1, 0, 1, 2 from a sample at
+/// fraction `f` in [0, 1) past tap 0.
+#[inline]
+pub fn catmull_rom(f: f32) -> [f32; 4] {
+    [
+        f * (-0.5 + f * (1.0 - 0.5 * f)),
+        1.0 + f * f * (-2.5 + 1.5 * f),
+        f * (0.5 + f * (2.0 - 1.5 * f)),
+        f * f * (-0.5 + 0.5 * f),
+    ]
+}
+
+/// a · b, summed left to right (as the WGSL writes it).
+#[inline]
+pub fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The position, in pixels of a `width` × `height` image, where camera `frame` sees point
+/// `q` (`q[3]` = 1) or direction `q` (`q[3]` = 0, a point at infinity); None when it lies
+/// behind the camera or on its plane.
+pub fn project(frame: &CameraFrame, q: [f32; 4], width: u32, height: u32) -> Option<[f32; 2]> {
+    let e = frame.eye.to_array();
+    let v = if q[3] != 0.0 {
+        [q[0] - e[0], q[1] - e[1], q[2] - e[2]]
+    } else {
+        [q[0], q[1], q[2]]
+    };
+    let z = dot3(v, frame.forward.to_array());
+    if !(z > 0.0) {
+        return None;
+    }
+    let sx = dot3(v, frame.right.to_array()) / z;
+    let sy = dot3(v, frame.true_up.to_array()) / z;
+    Some([
+        (sx / frame.half_width + 1.0) * 0.5 * width as f32,
+        (1.0 - sy / frame.half_height) * 0.5 * height as f32,
+    ])
+}
+
+/// What a backend needs of the history's past to accumulate one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TemporalFrame {
+    /// k: frames since the history started (0 for its first frame).
+    pub index: u32,
+    /// J_k.
+    pub jitter: [f32; 2],
+    /// [`anchor`] of J_k.
+    pub anchor: [f32; 2],
+    /// The previous frame's camera frame (for the output size), None when the history
+    /// starts over with this frame.
+    pub previous: Option<CameraFrame>,
+    /// Whether the eye moved since the previous frame (the [`SPECULAR_CAP`] rule).
+    pub eye_moved: bool,
+    /// Whether the camera frame is the previous one exactly: the history is then kept as it
+    /// is, pixel for pixel, without geometry tests or clamp.
+    pub still: bool,
+}
+
+/// The host side of a history: its size, the number of frames it holds and the last
+/// frame's camera. Both backends keep one and ask it for each frame's [`TemporalFrame`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct HistoryClock {
+    settings: TemporalSettings,
+    frames: u32,
+    previous: Option<CameraFrame>,
+}
+
+impl HistoryClock {
+    /// An empty history of `settings`' size.
+    pub fn new(settings: TemporalSettings) -> Self {
+        Self {
+            settings,
+            frames: 0,
+            previous: None,
+        }
+    }
+
+    /// The history's size.
+    pub fn settings(&self) -> TemporalSettings {
+        self.settings
+    }
+
+    /// Forgets the history (a camera cut): the next frame starts a new one.
+    pub fn reset(&mut self) {
+        self.frames = 0;
+        self.previous = None;
+    }
+
+    /// The next frame's [`TemporalFrame`] for camera frame `current` (made for the output
+    /// size), counting the frame as accumulated.
+    pub fn advance(&mut self, current: CameraFrame) -> TemporalFrame {
+        let k = self.frames;
+        let j = jitter(k);
+        let frame = TemporalFrame {
+            index: k,
+            jitter: j,
+            anchor: anchor(j),
+            previous: self.previous,
+            eye_moved: self.previous.is_some_and(|p| p.eye != current.eye),
+            still: self.previous == Some(current),
+        };
+        self.frames = self.frames.wrapping_add(1);
+        self.previous = Some(current);
+        frame
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+    use steadyray_scene::Camera;
+
+    #[test]
+    fn jitter_starts_at_zero_and_fills_the_pixel() {
+        assert_eq!(jitter(0), [0.0, 0.0]);
+        assert_eq!(anchor(jitter(0)), [0.5, 0.5]);
+        // 17 frames spread over a 4x4 grid of cells, at most three in any, and centred.
+        let mut cells = [0u32; 16];
+        let mut sum = [0.0f64; 2];
+        for k in 0..17 {
+            let [u, v] = anchor(jitter(k));
+            assert!((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v));
+            cells[(u * 4.0) as usize * 4 + (v * 4.0) as usize] += 1;
+            sum = [sum[0] + f64::from(u), sum[1] + f64::from(v)];
+        }
+        assert!(cells.iter().all(|&c| c <= 3), "{cells:?}");
+        assert!(cells.iter().filter(|&&c| c > 0).count() >= 10, "{cells:?}");
+        for s in sum {
+            assert!((s / 17.0 - 0.5).abs() < 1e-6, "{sum:?}");
+        }
+    }
+
+    #[test]
+    fn jittered_offsets_stay_in_the_pixel() {
+        for k in 0..64 {
+            let j = jitter(k);
+            for (u, v) in [(0.0, 0.0), (0.5, 0.5), (0.999_999, 0.25)] {
+                let (a, b) = jittered((u, v), j);
+                assert!((0.0..1.0).contains(&a) && (0.0..1.0).contains(&b));
+            }
+        }
+        assert_eq!(jittered((0.3, 0.7), jitter(0)), (0.3, 0.7));
+    }
+
+    #[test]
+    fn every_column_lands_where_its_sample_lies() {
+        for (full, low) in [(640u32, 640u32), (640, 320), (640, 211), (97, 25)] {
+            for k in 0..8 {
+                let a = anchor(jitter(k))[0];
+                let mut hit = vec![0u32; full as usize];
+                for x in 0..low {
+                    let l = landing(x, a, full, low);
+                    assert!(l < full);
+                    hit[l as usize] += 1;
+                }
+                for (x, &n) in hit.iter().enumerate() {
+                    let from = landed_from(x as u32, a, full, low);
+                    assert_eq!(n, u32::from(from.is_some()), "{full}/{low} column {x}");
+                    if let Some(s) = from {
+                        assert_eq!(landing(s, a, full, low), x as u32);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn catmull_rom_interpolates_and_sums_to_one() {
+        assert_eq!(catmull_rom(0.0), [0.0, 1.0, 0.0, 0.0]);
+        for i in 0..10 {
+            let w = catmull_rom(i as f32 / 10.0);
+            assert!((w.iter().sum::<f32>() - 1.0).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn projection_inverts_the_eye_ray() {
+        let camera = Camera::look_at(Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO, Vec3::Y, 50.0);
+        let frame = camera.frame(320, 180);
+        for (px, py, u, v) in [
+            (0, 0, 0.5, 0.5),
+            (100, 37, 0.2, 0.9),
+            (319, 179, 0.99, 0.01),
+        ] {
+            let d = frame.ray_dir(px, py, u, v, 320, 180);
+            let expect = [px as f32 + u, py as f32 + v];
+            for q in [
+                (frame.eye + 7.5 * d).extend(1.0).to_array(),
+                d.extend(0.0).to_array(),
+            ] {
+                let p = project(&frame, q, 320, 180).unwrap();
+                assert!((p[0] - expect[0]).abs() < 1e-3 && (p[1] - expect[1]).abs() < 1e-3);
+            }
+        }
+        let behind = (frame.eye - frame.forward).extend(1.0).to_array();
+        assert_eq!(project(&frame, behind, 320, 180), None);
+    }
+
+    #[test]
+    fn the_clock_counts_frames_and_forgets_on_reset() {
+        let size = TemporalSettings {
+            width: 64,
+            height: 32,
+        };
+        let mut clock = HistoryClock::new(size);
+        let a = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 60.0).frame(64, 32);
+        let mut b = a;
+        b.eye.x = 0.5;
+        let first = clock.advance(a);
+        assert_eq!(
+            (first.index, first.previous, first.eye_moved),
+            (0, None, false)
+        );
+        assert!(!first.still);
+        let second = clock.advance(a);
+        assert_eq!((second.index, second.previous), (1, Some(a)));
+        assert!(!second.eye_moved && second.still);
+        let third = clock.advance(b);
+        assert!(third.eye_moved && !third.still);
+        clock.reset();
+        let after = clock.advance(b);
+        assert_eq!((after.index, after.previous), (0, None));
+    }
+
+    #[test]
+    fn frames_larger_than_the_history_are_refused() {
+        let size = TemporalSettings {
+            width: 64,
+            height: 32,
+        };
+        let frame = |width, height| RenderSettings {
+            width,
+            height,
+            spp: 1.0,
+            max_depth: 2,
+        };
+        assert!(size.check(&frame(64, 32)).is_ok());
+        assert!(size.check(&frame(16, 8)).is_ok());
+        assert!(size.check(&frame(65, 32)).is_err());
+        let empty = TemporalSettings {
+            width: 0,
+            height: 32,
+        };
+        assert!(empty.check(&frame(1, 1)).is_err());
+    }
+}
