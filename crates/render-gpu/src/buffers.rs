@@ -91,6 +91,8 @@ pub(crate) struct FrameBuffers {
     pub(crate) stats_readback: wgpu::Buffer,
     /// Readback of an image (linear or RGBA8).
     pub(crate) image_readback: GrowBuffer,
+    /// In the temporal mode, two `vec4<u32>` geometry words per pixel.
+    pub(crate) geometry: GrowBuffer,
 }
 
 impl FrameBuffers {
@@ -118,16 +120,26 @@ impl FrameBuffers {
                 mapped_at_creation: false,
             }),
             image_readback: GrowBuffer::new(device, "image readback", U::MAP_READ | U::COPY_DST, 0),
+            geometry: GrowBuffer::new(device, "pixel geometry", U::STORAGE, 0),
         }
     }
 
-    /// Makes room for a frame of `pixels` pixels and `counters` workgroup counters; returns
-    /// whether a bound buffer was replaced.
-    pub(crate) fn ensure(&mut self, device: &wgpu::Device, pixels: u64, counters: u64) -> bool {
+    /// Makes room for a frame of `pixels` pixels and `counters` workgroup counters, with
+    /// geometry records when `temporal`, and for tone-mapping `shown` pixels; returns whether
+    /// a bound buffer was replaced.
+    pub(crate) fn ensure(
+        &mut self,
+        device: &wgpu::Device,
+        pixels: u64,
+        counters: u64,
+        temporal: bool,
+        shown: u64,
+    ) -> bool {
         let grew = [
             self.image.ensure(device, pixels * 16),
-            self.srgb8.ensure(device, pixels * 4),
+            self.srgb8.ensure(device, shown * 4),
             self.group_counts.ensure(device, counters * 4),
+            temporal && self.geometry.ensure(device, pixels * 32),
         ];
         grew.contains(&true)
     }

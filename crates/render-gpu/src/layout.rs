@@ -5,6 +5,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use steadyray_render::MAX_DEPTH;
+use steadyray_scene::camera::CameraFrame;
 
 /// A node of the triangle BVH (WGSL `BvhNode`): the 4-wide GPU layout of
 /// `steadyray-accel`, uploaded as built.
@@ -76,6 +77,12 @@ pub struct GpuFrame {
     pub counter_stride: u32,
     /// Workgroups in the dispatch.
     pub group_count: u32,
+    /// The temporal mode's jitter J_k (zero outside it).
+    pub jitter: [f32; 2],
+    /// The temporal mode's first branch sample index (zero outside it).
+    pub sample_base: u32,
+    /// 1 in the temporal mode: sample 0 of each pixel records its geometry.
+    pub temporal: u32,
 }
 
 /// An analytic shape (WGSL `Shape`), with what its intersection test needs precomputed
@@ -168,6 +175,62 @@ pub struct GpuCastParams {
     pub triangle_count: u32,
 }
 
+/// A camera frame (WGSL `CameraView`): `steadyray_scene::CameraFrame`, for the temporal
+/// history's size.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCameraView {
+    pub eye: [f32; 3],
+    pub half_width: f32,
+    pub forward: [f32; 3],
+    pub half_height: f32,
+    pub right: [f32; 3],
+    pub pad0: u32,
+    pub true_up: [f32; 3],
+    pub pad1: u32,
+}
+
+impl From<&CameraFrame> for GpuCameraView {
+    fn from(frame: &CameraFrame) -> Self {
+        Self {
+            eye: frame.eye.to_array(),
+            half_width: frame.half_width,
+            forward: frame.forward.to_array(),
+            half_height: frame.half_height,
+            right: frame.right.to_array(),
+            true_up: frame.true_up.to_array(),
+            ..Default::default()
+        }
+    }
+}
+
+/// The temporal resolve's uniform (WGSL `TemporalParams`, `shaders/temporal.wgsl`): the
+/// camera frames of this frame and the previous one, the history's and the frame's sizes,
+/// the landing anchor and the history's state (`steadyray_render::temporal::TemporalFrame`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTemporalParams {
+    pub current: GpuCameraView,
+    pub previous: GpuCameraView,
+    /// The history's size.
+    pub width: u32,
+    pub height: u32,
+    /// The rendered frame's size.
+    pub low_width: u32,
+    pub low_height: u32,
+    /// Where a frame pixel's value lands inside it.
+    pub anchor: [f32; 2],
+    /// 1 when the previous camera frame and the history are valid.
+    pub has_history: u32,
+    /// 1 when the eye moved since the previous frame.
+    pub eye_moved: u32,
+    /// 1 when the camera frame is the previous one exactly.
+    pub still: u32,
+    pub pad0: u32,
+    pub pad1: u32,
+    pub pad2: u32,
+}
+
 /// A ray of a ray list (WGSL `CastRay`): origin + t·dir, hit on t in (T_MIN, ∞).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -218,6 +281,7 @@ mod tests {
         for source in [
             crate::pipeline::SHADER_SOURCE,
             crate::pipeline::RAYCAST_SOURCE,
+            crate::pipeline::TEMPORAL_SOURCE,
         ] {
             let module = parse(source);
             naga::valid::Validator::new(
@@ -273,6 +337,9 @@ mod tests {
                     groups_x,
                     counter_stride,
                     group_count,
+                    jitter,
+                    sample_base,
+                    temporal,
                 }),
             ),
             (
@@ -363,6 +430,37 @@ mod tests {
                 }),
             ),
             ("CastHit", rust_layout!(GpuCastHit { t, id })),
+            (
+                "CameraView",
+                rust_layout!(GpuCameraView {
+                    eye,
+                    half_width,
+                    forward,
+                    half_height,
+                    right,
+                    pad0,
+                    true_up,
+                    pad1,
+                }),
+            ),
+            (
+                "TemporalParams",
+                rust_layout!(GpuTemporalParams {
+                    current,
+                    previous,
+                    width,
+                    height,
+                    low_width,
+                    low_height,
+                    anchor,
+                    has_history,
+                    eye_moved,
+                    still,
+                    pad0,
+                    pad1,
+                    pad2,
+                }),
+            ),
         ];
         for (name, (size, fields)) in rust {
             let (wgsl_size, wgsl_fields) = wgsl_struct(&module, name);
@@ -375,18 +473,27 @@ mod tests {
         }
     }
 
+    /// The literal value of WGSL constant `name`.
+    fn wgsl_constant(module: &naga::Module, name: &str) -> naga::Literal {
+        let (_, c) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("WGSL constant {name} not found"));
+        match module.global_expressions[c.init] {
+            naga::Expression::Literal(literal) => literal,
+            ref other => panic!("WGSL constant {name} is not a literal: {other:?}"),
+        }
+    }
+
     #[test]
     fn wgsl_constants_match_rust() {
+        use steadyray_render::temporal;
         let module = wgsl_module();
         let wgsl_u32 = |name: &str| -> u32 {
-            let (_, c) = module
-                .constants
-                .iter()
-                .find(|(_, c)| c.name.as_deref() == Some(name))
-                .unwrap_or_else(|| panic!("WGSL constant {name} not found"));
-            match module.global_expressions[c.init] {
-                naga::Expression::Literal(naga::Literal::U32(v)) => v,
-                ref other => panic!("WGSL constant {name} is not a u32 literal: {other:?}"),
+            match wgsl_constant(&module, name) {
+                naga::Literal::U32(v) => v,
+                other => panic!("WGSL constant {name} is not a u32: {other:?}"),
             }
         };
         let rust = [
@@ -406,9 +513,25 @@ mod tests {
             ("MAT_MIRROR", MAT_MIRROR),
             ("MAT_DIELECTRIC", MAT_DIELECTRIC),
             ("MAT_EMISSIVE", MAT_EMISSIVE),
+            ("MISS_ID", temporal::MISS_ID),
+            ("ID_MASK", temporal::ID_MASK),
+            ("APPROX_FLAG", temporal::APPROX_FLAG),
         ];
         for (name, value) in rust {
             assert_eq!(wgsl_u32(name), value, "WGSL constant {name}");
+        }
+        let floats = [
+            ("HISTORY_CAP", temporal::HISTORY_CAP),
+            ("SPECULAR_CAP", temporal::SPECULAR_CAP),
+            ("PLANE_TOLERANCE", temporal::PLANE_TOLERANCE),
+            ("NORMAL_COS", temporal::NORMAL_COS),
+        ];
+        for (name, value) in floats {
+            let wgsl = match wgsl_constant(&module, name) {
+                naga::Literal::F32(v) => v,
+                other => panic!("WGSL constant {name} is not an f32: {other:?}"),
+            };
+            assert_eq!(wgsl.to_bits(), value.to_bits(), "WGSL constant {name}");
         }
     }
 }

@@ -17,6 +17,7 @@ mod raycast;
 mod renderer;
 mod scene_buffers;
 mod surface;
+mod temporal;
 mod timing;
 
 pub use adapter::{AdapterSummary, DeviceKind, GpuOptions, list_adapters};

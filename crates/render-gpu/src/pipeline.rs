@@ -5,7 +5,8 @@ use crate::error::scoped;
 use steadyray_render::RenderError;
 
 /// The renderer's WGSL module: layouts and its bindings, sampling rules, eye rays, the
-/// triangle BVH queries, geometry, integrator, count reduction and tone map.
+/// triangle BVH queries, geometry, the temporal mode's geometry record, integrator, count
+/// reduction and tone map.
 pub(crate) const SHADER_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
     include_str!("shaders/render_bindings.wgsl"),
@@ -13,9 +14,19 @@ pub(crate) const SHADER_SOURCE: &str = concat!(
     include_str!("shaders/camera.wgsl"),
     include_str!("shaders/traversal.wgsl"),
     include_str!("shaders/geometry.wgsl"),
+    include_str!("shaders/temporal_record.wgsl"),
     include_str!("shaders/integrator.wgsl"),
     include_str!("shaders/counts.wgsl"),
+    include_str!("shaders/srgb.wgsl"),
     include_str!("shaders/tonemap.wgsl"),
+);
+
+/// The temporal resolve's WGSL module ([`crate::temporal`]): layouts, the sRGB rule, and
+/// the resolve and history tone map with their bindings.
+pub(crate) const TEMPORAL_SOURCE: &str = concat!(
+    include_str!("shaders/layout.wgsl"),
+    include_str!("shaders/srgb.wgsl"),
+    include_str!("shaders/temporal.wgsl"),
 );
 
 /// The ray caster's WGSL module ([`crate::GpuRayCaster`]): layouts, eye rays and the same
@@ -39,6 +50,7 @@ pub(crate) mod binding {
     pub const TOTALS: u32 = 7;
     pub const SRGB8: u32 = 8;
     pub const BVH_NODES: u32 = 9;
+    pub const GEOMETRY: u32 = 10;
 }
 
 /// The three entry points of [`SHADER_SOURCE`] over one bind group layout.
@@ -95,6 +107,7 @@ impl Pipelines {
                 layout_entry(TOTALS, write),
                 layout_entry(SRGB8, write),
                 layout_entry(BVH_NODES, read),
+                layout_entry(GEOMETRY, write),
             ],
         });
         let module = shader_module(device, SHADER_SOURCE)?;

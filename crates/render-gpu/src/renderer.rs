@@ -7,11 +7,13 @@ use crate::error::{gpu_error, scoped};
 use crate::layout::{GpuFrame, WORKGROUP_SIZE};
 use crate::pipeline::{Pipelines, binding, buffer_entry};
 use crate::scene_buffers::{PackedScene, SceneBuffers};
+use crate::temporal::TemporalPass;
 use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
 use std::time::Instant;
+use steadyray_render::temporal::sample_base;
 use steadyray_render::{
-    BackendInfo, FrameStats, Image, RayCounts, RenderError, RenderSettings, Renderer, TimingSource,
-    check_time,
+    BackendInfo, FrameStats, Image, RayCounts, RenderError, RenderSettings, Renderer,
+    TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 
@@ -26,13 +28,22 @@ struct LoadedScene {
     background: [f32; 3],
 }
 
+/// The image the last frame left: its size, and whether it is the temporal history.
+#[derive(Clone, Copy, Debug)]
+struct LastFrame {
+    width: u32,
+    height: u32,
+    temporal: bool,
+}
+
 /// The GPU backend. It owns its device (create one per process) and keeps pipelines and
 /// buffers across frames and scenes: a new image size or quality only rewrites the frame
 /// uniform and, when the image grows, reallocates the frame buffers.
 ///
 /// [`Renderer::render`] waits for the frame and reads back only the ray counts and
 /// timestamps; [`Renderer::read_image`] (linear) and [`GpuRenderer::read_srgb8`]
-/// (tone-mapped) read the image.
+/// (tone-mapped) read the image. In the temporal mode the history stays on the device and
+/// the resolve pass runs inside the frame's timestamps.
 pub struct GpuRenderer {
     ctx: GpuContext,
     pipelines: Pipelines,
@@ -43,8 +54,8 @@ pub struct GpuRenderer {
     /// Refers to the buffers above; dropped whenever one of them is replaced.
     bind_group: Option<wgpu::BindGroup>,
     scene: Option<LoadedScene>,
-    /// Size of the last rendered frame.
-    last_frame: Option<(u32, u32)>,
+    temporal: TemporalPass,
+    last_frame: Option<LastFrame>,
 }
 
 impl GpuRenderer {
@@ -69,6 +80,7 @@ impl GpuRenderer {
         });
         let scene_buffers = SceneBuffers::new(&ctx.device);
         let frame_buffers = FrameBuffers::new(&ctx.device);
+        let temporal = TemporalPass::new(&ctx.device)?;
         ctx.errors.check()?;
         Ok(Self {
             ctx,
@@ -79,6 +91,7 @@ impl GpuRenderer {
             frame_buffers,
             bind_group: None,
             scene: None,
+            temporal,
             last_frame: None,
         })
     }
@@ -97,10 +110,10 @@ impl GpuRenderer {
     /// row-major, top row first: the same bytes as `read_image()?.to_srgb8_rgba()` up to
     /// the GPU's `pow` rounding (at most one level, rarely).
     pub fn read_srgb8(&mut self) -> Result<Vec<u8>, RenderError> {
-        let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
-        let size = u64::from(width) * u64::from(height) * 4;
+        let last = self.last_frame.ok_or(RenderError::NoFrame)?;
+        let size = u64::from(last.width) * u64::from(last.height) * 4;
         let mut encoder = self.ctx.encoder("tonemap");
-        self.encode_tonemap(&mut encoder, width, height);
+        self.encode_tonemap(&mut encoder, last);
         self.read_back(encoder, Source::Srgb8, size)
     }
 
@@ -124,6 +137,7 @@ impl GpuRenderer {
                         buffer_entry(binding::TOTALS, &f.totals),
                         buffer_entry(binding::SRGB8, f.srgb8.buffer()),
                         buffer_entry(binding::BVH_NODES, s.bvh_nodes.buffer()),
+                        buffer_entry(binding::GEOMETRY, f.geometry.buffer()),
                     ],
                 })
         });
@@ -143,6 +157,7 @@ impl GpuRenderer {
         let from = match source {
             Source::Linear => f.image.buffer(),
             Source::Srgb8 => f.srgb8.buffer(),
+            Source::History => self.temporal.output().ok_or(RenderError::NoFrame)?,
         };
         encoder.copy_buffer_to_buffer(from, 0, f.image_readback.buffer(), 0, size);
         let commands = scoped(&self.ctx.device, "cannot record the readback", || {
@@ -174,15 +189,24 @@ impl GpuRenderer {
         encoder.copy_buffer_to_buffer(&f.totals, 0, &f.stats_readback, 0, bytes);
     }
 
-    /// Checks that a frame of `settings` fits the device's buffer and dispatch limits.
-    fn check_limits(&self, settings: &RenderSettings, counters: u64) -> Result<(), RenderError> {
+    /// Checks that a frame of `settings` (accumulated into a history of `history` pixels in
+    /// the temporal mode) fits the device's buffer and dispatch limits.
+    fn check_limits(
+        &self,
+        settings: &RenderSettings,
+        counters: u64,
+        history: Option<u64>,
+    ) -> Result<(), RenderError> {
         let limits = self.ctx.device.limits();
         let max = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
+        let history = history.unwrap_or(0);
         let needs = [
             ("image", settings.pixels() * 16),
             ("ray counter", counters * 4),
+            ("history geometry", history * 32),
+            ("pixel geometry", history.min(1) * settings.pixels() * 32),
         ];
         match needs.into_iter().find(|&(_, bytes)| bytes > max) {
             Some((what, bytes)) => Err(gpu_error(
@@ -201,6 +225,8 @@ impl GpuRenderer {
 enum Source {
     Linear,
     Srgb8,
+    /// The temporal history (radiance and age per pixel).
+    History,
 }
 
 /// The 64-bit (low, high) totals in `bytes`.
@@ -242,6 +268,7 @@ impl Renderer for GpuRenderer {
             self.bind_group = None;
         }
         self.scene = Some(loaded);
+        self.temporal.reset();
         Ok(())
     }
 
@@ -262,9 +289,18 @@ impl Renderer for GpuRenderer {
         let group_count = groups_x * groups_y;
         let counter_stride = settings.max_depth + 3;
         let counters = u64::from(group_count) * u64::from(counter_stride);
-        self.check_limits(settings, counters)?;
+        let history = self.temporal.settings();
+        if let Some(history) = history {
+            history.check(settings)?;
+        }
+        let history_pixels = history.map(|h| u64::from(h.width) * u64::from(h.height));
+        self.check_limits(settings, counters, history_pixels)?;
 
-        let cam = camera.frame(width, height);
+        // In the temporal mode rays follow the history's aspect, so every sample lies where
+        // it lands.
+        let (frame_width, frame_height) = history.map_or((width, height), |h| (h.width, h.height));
+        let cam = camera.frame(frame_width, frame_height);
+        let step = self.temporal.advance(cam);
         let frame = GpuFrame {
             eye: cam.eye.to_array(),
             half_width: cam.half_width,
@@ -284,12 +320,20 @@ impl Renderer for GpuRenderer {
             groups_x,
             counter_stride,
             group_count,
+            jitter: step.map_or([0.0; 2], |s| s.jitter),
+            sample_base: step.map_or(0, |s| sample_base(s.index)),
+            temporal: u32::from(step.is_some()),
         };
-        if self
-            .frame_buffers
-            .ensure(&self.ctx.device, settings.pixels(), counters)
-        {
+        let shown = history_pixels.unwrap_or(settings.pixels());
+        if self.frame_buffers.ensure(
+            &self.ctx.device,
+            settings.pixels(),
+            counters,
+            step.is_some(),
+            shown,
+        ) {
             self.bind_group = None;
+            self.temporal.invalidate();
         }
         // The image buffer is about to be overwritten: no frame to read until this one is.
         self.last_frame = None;
@@ -300,13 +344,28 @@ impl Renderer for GpuRenderer {
         let mut encoder = self.ctx.encoder("frame");
         let bind_group = self.bind_group();
         {
+            // The temporal resolve ends the timed span when there is one.
+            let writes = match step {
+                Some(_) => GpuTimer::begin_writes,
+                None => GpuTimer::pass_writes,
+            };
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render"),
-                timestamp_writes: self.timer.as_ref().map(GpuTimer::pass_writes),
+                timestamp_writes: self.timer.as_ref().map(writes),
             });
             pass.set_pipeline(&self.pipelines.render);
             pass.set_bind_group(0, &bind_group, &[]);
             pass.dispatch_workgroups(groups_x, groups_y, 1);
+        }
+        if let Some(step) = &step {
+            self.temporal.encode_resolve(
+                &self.ctx.device,
+                &self.ctx.queue,
+                &mut encoder,
+                &self.frame_buffers,
+                (&cam, step, (width, height)),
+                self.timer.as_ref(),
+            );
         }
         self.encode_totals(&mut encoder, &bind_group, counter_stride);
         let f = &self.frame_buffers;
@@ -338,7 +397,11 @@ impl Renderer for GpuRenderer {
             Some(ms) => (ms, TimingSource::GpuTimestamps),
             None => (submit_and_wait_ms, TimingSource::WallClock),
         };
-        self.last_frame = Some((width, height));
+        self.last_frame = Some(LastFrame {
+            width: frame_width,
+            height: frame_height,
+            temporal: step.is_some(),
+        });
         Ok(FrameStats {
             render_ms,
             wall_ms: wall_start.elapsed().as_secs_f64() * 1e3,
@@ -351,10 +414,19 @@ impl Renderer for GpuRenderer {
     }
 
     fn read_image(&mut self) -> Result<Image, RenderError> {
-        let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
+        let LastFrame {
+            width,
+            height,
+            temporal,
+        } = self.last_frame.ok_or(RenderError::NoFrame)?;
         let size = u64::from(width) * u64::from(height) * 16;
         let encoder = self.ctx.encoder("read image");
-        let bytes = self.read_back(encoder, Source::Linear, size)?;
+        let source = if temporal {
+            Source::History
+        } else {
+            Source::Linear
+        };
+        let bytes = self.read_back(encoder, source, size)?;
         let pixels = bytes
             .chunks_exact(16)
             .map(|texel| {
@@ -367,6 +439,22 @@ impl Renderer for GpuRenderer {
             height,
             pixels,
         })
+    }
+
+    fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {
+        if let Some(settings) = &temporal {
+            settings.validate()?;
+        }
+        let device = &self.ctx.device;
+        scoped(device, "cannot allocate the temporal history", || {
+            self.temporal.set(device, temporal);
+        })?;
+        self.last_frame = None;
+        Ok(())
+    }
+
+    fn reset_history(&mut self) {
+        self.temporal.reset();
     }
 }
 

@@ -45,6 +45,24 @@ impl GpuTimer {
         }
     }
 
+    /// The timestamp write at the start of the first of several passes to be timed.
+    pub(crate) fn begin_writes(&self) -> wgpu::ComputePassTimestampWrites<'_> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: &self.query_set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: None,
+        }
+    }
+
+    /// The timestamp write at the end of the last of several passes to be timed.
+    pub(crate) fn end_writes(&self) -> wgpu::ComputePassTimestampWrites<'_> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: &self.query_set,
+            beginning_of_pass_write_index: None,
+            end_of_pass_write_index: Some(1),
+        }
+    }
+
     /// Resolves the two timestamps and copies them to `destination` at `offset`.
     pub(crate) fn resolve(
         &self,

@@ -83,7 +83,7 @@ pub fn jitter(k: u32) -> [f32; 2] {
     let m = k.div_ceil(2);
     JITTER_STEP.map(|step| {
         let point = m.wrapping_mul(step);
-        let u = if k % 2 == 0 {
+        let u = if k.is_multiple_of(2) {
             point.wrapping_neg()
         } else {
             point
@@ -170,7 +170,8 @@ pub fn project(frame: &CameraFrame, q: [f32; 4], width: u32, height: u32) -> Opt
         [q[0], q[1], q[2]]
     };
     let z = dot3(v, frame.forward.to_array());
-    if !(z > 0.0) {
+    // NaN (from a non-finite point) projects nowhere.
+    if z.is_nan() || z <= 0.0 {
         return None;
     }
     let sx = dot3(v, frame.right.to_array()) / z;

@@ -200,7 +200,7 @@ impl Inputs<'_> {
             colour = [0, 1, 2].map(|c| colour[c] + w * h[c]);
             age += w * h[3];
         }
-        if !(weight > 0.0) {
+        if weight <= 0.0 {
             return None;
         }
         let inside = ix >= 1 && iy >= 1 && ix + 2 < width as i32 && iy + 2 < height as i32;

@@ -2,7 +2,7 @@
 //! the window chose (so both share one device), and tone-maps each frame into its packed
 //! RGBA8 buffer, which a present pass on the same device reads directly.
 
-use super::GpuRenderer;
+use super::{GpuRenderer, LastFrame};
 use crate::device::GpuContext;
 use crate::error::scoped;
 use crate::layout::WORKGROUP_SIZE;
@@ -41,9 +41,9 @@ impl GpuRenderer {
     /// without waiting: passes submitted afterwards to [`Self::queue`] read the finished
     /// image.
     pub fn display_image(&mut self) -> Result<DisplayImage<'_>, RenderError> {
-        let (width, height) = self.last_frame.ok_or(RenderError::NoFrame)?;
+        let last = self.last_frame.ok_or(RenderError::NoFrame)?;
         let mut encoder = self.ctx.encoder("tonemap for display");
-        self.encode_tonemap(&mut encoder, width, height);
+        self.encode_tonemap(&mut encoder, last);
         let device = &self.ctx.device;
         let commands = scoped(device, "cannot record the tone map", || encoder.finish())?;
         scoped(device, "GPU submission failed", || {
@@ -52,18 +52,19 @@ impl GpuRenderer {
         self.ctx.errors.check()?;
         Ok(DisplayImage {
             buffer: self.frame_buffers.srgb8.buffer(),
-            width,
-            height,
+            width: last.width,
+            height: last.height,
         })
     }
 
-    /// Records the tone-map pass of a `width × height` frame (linear image to packed RGBA8).
-    pub(super) fn encode_tonemap(
-        &mut self,
-        encoder: &mut wgpu::CommandEncoder,
-        width: u32,
-        height: u32,
-    ) {
+    /// Records the tone-map pass of the last frame (linear image, or the temporal history,
+    /// to packed RGBA8).
+    pub(super) fn encode_tonemap(&mut self, encoder: &mut wgpu::CommandEncoder, last: LastFrame) {
+        if last.temporal {
+            self.temporal.encode_tonemap(encoder);
+            return;
+        }
+        let (width, height) = (last.width, last.height);
         let bind_group = self.bind_group();
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("tonemap"),

@@ -41,6 +41,7 @@ fn trace_sample(px: u32, py: u32, sample: u32, eye: vec3<f32>, dir: vec3<f32>) -
         atomicAdd(&group_rays[k], 1u);
         let hit = closest_hit(ray);
         if hit.t >= NO_HIT {
+            record_miss();
             radiance += w * frame.background;
             break;
         }
@@ -50,6 +51,8 @@ fn trace_sample(px: u32, py: u32, sample: u32, eye: vec3<f32>, dir: vec3<f32>) -
         let entering = dot(surface.normal, d) < 0.0;
         let n = select(-surface.normal, surface.normal, entering);
         let m = materials[surface.material];
+        let goes_on = k < frame.max_depth;
+        record_hit(hit.t, hit.prim, n, goes_on && m.kind == MAT_MIRROR, goes_on && m.kind == MAT_DIELECTRIC);
         if m.kind == MAT_EMISSIVE {
             radiance += w * m.colour;
             break;
@@ -109,10 +112,15 @@ fn render_pixel(px: u32, py: u32) {
     let n = samples_for_pixel(px, py, frame.spp);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < n; i++) {
-        let dir = eye_ray_dir(px, py, sample_offset(i, n));
-        sum += trace_sample(px, py, i, frame.eye, dir);
+        let dir = eye_ray_dir(px, py, jittered(sample_offset(i, n), frame.jitter));
+        record_begin(frame.temporal != 0u && i == 0u, frame.eye, dir);
+        sum += trace_sample(px, py, i + frame.sample_base, frame.eye, dir);
     }
-    image[py * frame.width + px] = vec4<f32>(sum / f32(n), 1.0);
+    let index = py * frame.width + px;
+    image[index] = vec4<f32>(sum / f32(n), 1.0);
+    if frame.temporal != 0u {
+        record_store(index);
+    }
     let before = atomicAdd(&group_rays[frame.max_depth + 1u], shadow_rays);
     if before > 0xffffffffu - shadow_rays {
         atomicAdd(&group_rays[frame.max_depth + 2u], 1u);

@@ -27,6 +27,15 @@ const SHAPE_SPHERE: u32 = 0u;
 const SHAPE_QUAD: u32 = 1u;
 const SHAPE_PLANE: u32 = 2u;
 
+// The temporal mode (steadyray_render::temporal, docs/temporal.md).
+const HISTORY_CAP: f32 = 16.0;
+const SPECULAR_CAP: f32 = 4.0;
+const PLANE_TOLERANCE: f32 = 0.02;
+const NORMAL_COS: f32 = 0.5;
+const MISS_ID: u32 = 0x3fffffffu;
+const ID_MASK: u32 = 0x3fffffffu;
+const APPROX_FLAG: u32 = 0x80000000u;
+
 const MAT_DIFFUSE: u32 = 0u;
 const MAT_MIRROR: u32 = 1u;
 const MAT_DIELECTRIC: u32 = 2u;
@@ -52,6 +61,43 @@ struct Frame {
     groups_x: u32,
     counter_stride: u32,
     group_count: u32,
+    // The temporal mode's jitter and first branch sample index (zero outside it), and 1 when
+    // sample 0 records its geometry.
+    jitter: vec2<f32>,
+    sample_base: u32,
+    temporal: u32,
+}
+
+// A camera frame (GpuCameraView; CameraFrame of spec/corridor.md) for the temporal history's
+// size.
+struct CameraView {
+    eye: vec3<f32>,
+    half_width: f32,
+    forward: vec3<f32>,
+    half_height: f32,
+    right: vec3<f32>,
+    pad0: u32,
+    true_up: vec3<f32>,
+    pad1: u32,
+}
+
+// The temporal resolve's settings (GpuTemporalParams): this frame's and the previous frame's
+// camera frames, the history's size (width x height) and the rendered frame's, the landing
+// anchor and the history's state.
+struct TemporalParams {
+    current: CameraView,
+    previous: CameraView,
+    width: u32,
+    height: u32,
+    low_width: u32,
+    low_height: u32,
+    anchor: vec2<f32>,
+    has_history: u32,
+    eye_moved: u32,
+    still: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // An analytic shape (see GpuShape in src/layout.rs). Sphere: p0 centre, s0 = r²,

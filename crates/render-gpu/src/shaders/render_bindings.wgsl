@@ -1,5 +1,5 @@
-// The integrator's bind group (src/pipeline.rs, `binding`): the frame, the scene, the image
-// and the ray counters.
+// The integrator's bind group (src/pipeline.rs, `binding`): the frame, the scene, the image,
+// the ray counters and, in the temporal mode, the pixels' geometry records.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> shapes: array<Shape>;
@@ -16,3 +16,6 @@
 @group(0) @binding(8) var<storage, read_write> srgb8: array<u32>;
 // The triangle BVH over `triangles` (empty when there are none).
 @group(0) @binding(9) var<storage, read> bvh_nodes: array<BvhNode>;
+// In the temporal mode, two per pixel: the record's point (bits of a vec4<f32>), then its
+// normal's bits and its tag (temporal_record.wgsl).
+@group(0) @binding(10) var<storage, read_write> geometry: array<vec4<u32>>;

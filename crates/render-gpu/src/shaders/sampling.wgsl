@@ -37,6 +37,13 @@ fn sample_offset(i: u32, n: u32) -> vec2<f32> {
     return m - floor(m);
 }
 
+// The temporal mode's sub-pixel position of a sample at `offset` in a frame of jitter j:
+// frac(offset + j), written as t - floor(t) (steadyray_render::temporal::jittered).
+fn jittered(offset: vec2<f32>, j: vec2<f32>) -> vec2<f32> {
+    let t = offset + j;
+    return t - floor(t);
+}
+
 var<private> BAYER8: array<u32, 64> = array<u32, 64>(
     0u, 32u, 8u, 40u, 2u, 34u, 10u, 42u,
     48u, 16u, 56u, 24u, 50u, 18u, 58u, 26u,

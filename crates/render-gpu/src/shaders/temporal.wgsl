@@ -1,0 +1,313 @@
+// The temporal resolve of docs/temporal.md, one thread per history pixel, written operation
+// for operation as the CPU's (render-cpu/src/temporal/resolve.rs) so both round alike: find
+// the frame's sample that lands in the pixel, reproject the history by that sample's point,
+// keep the taps whose surface is still seen around the pixel, filter them, clamp to the
+// frame's local colour range and blend (a still camera keeps the history as it is). Then
+// `tonemap_history` packs the new history for display.
+
+@group(0) @binding(0) var<uniform> params: TemporalParams;
+// The frame as rendered (low_width x low_height): radiance, and two geometry words per pixel
+// (temporal_record.wgsl).
+@group(0) @binding(1) var<storage, read> frame_image: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> frame_geometry: array<vec4<u32>>;
+// The history before this frame (width x height): radiance and age, and its geometry.
+@group(0) @binding(3) var<storage, read> history_in: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read> geometry_in: array<vec4<u32>>;
+// The history after it.
+@group(0) @binding(5) var<storage, read_write> history_out: array<vec4<f32>>;
+@group(0) @binding(6) var<storage, read_write> geometry_out: array<vec4<u32>>;
+// The new history tone-mapped, one packed RGBA8 per pixel.
+@group(0) @binding(7) var<storage, read_write> history_srgb8: array<u32>;
+
+fn dot3(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+fn finite3(c: vec3<f32>) -> bool {
+    let exponent = bitcast<vec3<u32>>(c) & vec3<u32>(0x7f800000u);
+    return all(exponent != vec3<u32>(0x7f800000u));
+}
+
+// A geometry record (temporal_record.wgsl).
+struct Record {
+    q: vec4<f32>,
+    n: vec3<f32>,
+    tag: u32,
+}
+
+fn frame_record(i: u32) -> Record {
+    let b = frame_geometry[2u * i + 1u];
+    return Record(bitcast<vec4<f32>>(frame_geometry[2u * i]), bitcast<vec3<f32>>(b.xyz), b.w);
+}
+
+fn history_record(i: u32) -> Record {
+    let b = geometry_in[2u * i + 1u];
+    return Record(bitcast<vec4<f32>>(geometry_in[2u * i]), bitcast<vec3<f32>>(b.xyz), b.w);
+}
+
+// floor((x + anchor) · full / low).
+fn landing(x: u32, anchor: f32, full: u32, low: u32) -> u32 {
+    return u32(floor((f32(x) + anchor) * f32(full) / f32(low)));
+}
+
+// floor((x + 0.5) · low / full), at most low - 1.
+fn covering(x: u32, full: u32, low: u32) -> u32 {
+    return min(u32(floor((f32(x) + 0.5) * f32(low) / f32(full))), low - 1u);
+}
+
+// The first of covering - 1, covering, covering + 1 whose landing is x, or -1.
+fn landed_from(x: u32, anchor: f32, full: u32, low: u32) -> i32 {
+    let c = covering(x, full, low);
+    if c >= 1u && landing(c - 1u, anchor, full, low) == x {
+        return i32(c) - 1;
+    }
+    if landing(c, anchor, full, low) == x {
+        return i32(c);
+    }
+    if c + 1u < low && landing(c + 1u, anchor, full, low) == x {
+        return i32(c) + 1;
+    }
+    return -1;
+}
+
+// Where camera frame `view` sees point q (q.w = 1) or direction q (q.w = 0), in pixels of
+// the history; z = 0 when behind the camera or on its plane.
+fn project(view: CameraView, q: vec4<f32>) -> vec3<f32> {
+    var v = q.xyz;
+    if q.w != 0.0 {
+        v = q.xyz - view.eye;
+    }
+    let z = dot3(v, view.forward);
+    if !(z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let sx = dot3(v, view.right) / z;
+    let sy = dot3(v, view.true_up) / z;
+    return vec3<f32>(
+        (sx / view.half_width + 1.0) * 0.5 * f32(params.width),
+        (1.0 - sy / view.half_height) * 0.5 * f32(params.height),
+        1.0,
+    );
+}
+
+fn catmull_rom(f: f32) -> vec4<f32> {
+    return vec4<f32>(
+        f * (-0.5 + f * (1.0 - 0.5 * f)),
+        1.0 + f * f * (-2.5 + 1.5 * f),
+        f * (0.5 + f * (2.0 - 1.5 * f)),
+        f * f * (-0.5 + 0.5 * f),
+    );
+}
+
+// The frame's 3x3 pixels around the covering one: the range of their finite colours and the
+// surfaces they see, with their points' distances from the previous eye.
+var<private> near_surfaces: array<Record, 9>;
+var<private> near_distances: array<f32, 9>;
+var<private> near_count: u32;
+var<private> near_lo: vec3<f32>;
+var<private> near_hi: vec3<f32>;
+var<private> near_has_range: bool;
+
+fn gather_neighbourhood(cx: u32, cy: u32) {
+    near_count = 0u;
+    near_has_range = false;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let nx = i32(cx) + dx;
+            let ny = i32(cy) + dy;
+            if nx < 0 || ny < 0 || nx >= i32(params.low_width) || ny >= i32(params.low_height) {
+                continue;
+            }
+            let i = u32(ny) * params.low_width + u32(nx);
+            let g = frame_record(i);
+            let d = g.q.xyz - params.previous.eye;
+            near_surfaces[near_count] = g;
+            near_distances[near_count] = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+            near_count += 1u;
+            let c = frame_image[i].xyz;
+            if !finite3(c) {
+                continue;
+            }
+            if near_has_range {
+                near_lo = min(near_lo, c);
+                near_hi = max(near_hi, c);
+            } else {
+                near_lo = c;
+                near_hi = c;
+                near_has_range = true;
+            }
+        }
+    }
+}
+
+// Whether the history's surface `old` is one the neighbourhood sees.
+fn seen_nearby(old: Record) -> bool {
+    for (var i = 0u; i < near_count; i++) {
+        let g = near_surfaces[i];
+        if (g.tag & ID_MASK) != (old.tag & ID_MASK) {
+            continue;
+        }
+        if g.q.w == 0.0 {
+            return true;
+        }
+        let off = old.q.xyz - g.q.xyz;
+        if abs(dot3(off, g.n)) <= PLANE_TOLERANCE * near_distances[i]
+            && dot3(g.n, old.n) >= NORMAL_COS {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The history's Catmull-Rom filter over the 4x4 pixels from (ix - 1, iy - 1) at fractions
+// (fx, fy) past (ix, iy): rows first, then the column.
+fn history_catmull_rom(ix: i32, iy: i32, fx: f32, fy: f32) -> vec3<f32> {
+    let wx = catmull_rom(fx);
+    let wy = catmull_rom(fy);
+    var sum = vec3<f32>(0.0);
+    for (var b = 0; b < 4; b++) {
+        let row = (iy - 1 + b) * i32(params.width);
+        var line = vec3<f32>(0.0);
+        for (var a = 0; a < 4; a++) {
+            let h = history_in[row + ix - 1 + a].xyz;
+            line = line + wx[a] * h;
+        }
+        sum = sum + wy[b] * line;
+    }
+    return sum;
+}
+
+// A pixel's reprojected history: valid, its filtered colour and its age.
+struct Kept {
+    valid: bool,
+    colour: vec3<f32>,
+    age: f32,
+}
+
+fn history_at(x: u32, y: u32, q: vec4<f32>) -> Kept {
+    let none = Kept(false, vec3<f32>(0.0), 0.0);
+    let before = project(params.previous, q);
+    let now = project(params.current, q);
+    if before.z == 0.0 || now.z == 0.0 {
+        return none;
+    }
+    let bx = f32(x) + (before.x - now.x);
+    let by = f32(y) + (before.y - now.y);
+    let width = i32(params.width);
+    let height = i32(params.height);
+    if !(bx >= -1.0 && bx < f32(params.width) && by >= -1.0 && by < f32(params.height)) {
+        return none;
+    }
+    let fx0 = floor(bx);
+    let fy0 = floor(by);
+    let fx = bx - fx0;
+    let fy = by - fy0;
+    let ix = i32(fx0);
+    let iy = i32(fy0);
+    let bilinear = vec4<f32>(
+        (1.0 - fx) * (1.0 - fy),
+        fx * (1.0 - fy),
+        (1.0 - fx) * fy,
+        fx * fy,
+    );
+    var all_valid = true;
+    var weight = 0.0;
+    var colour = vec3<f32>(0.0);
+    var age = 0.0;
+    for (var t = 0; t < 4; t++) {
+        let tx = ix + (t & 1);
+        let ty = iy + (t >> 1u);
+        if tx < 0 || ty < 0 || tx >= width || ty >= height {
+            all_valid = false;
+            continue;
+        }
+        let i = u32(ty) * params.width + u32(tx);
+        if !seen_nearby(history_record(i)) {
+            all_valid = false;
+            continue;
+        }
+        let w = bilinear[t];
+        let h = history_in[i];
+        weight += w;
+        colour = colour + w * h.xyz;
+        age += w * h.w;
+    }
+    if weight <= 0.0 {
+        return none;
+    }
+    let inside = ix >= 1 && iy >= 1 && ix + 2 < width && iy + 2 < height;
+    var filtered = colour / weight;
+    if all_valid && inside {
+        filtered = history_catmull_rom(ix, iy, fx, fy);
+    }
+    if !finite3(filtered) {
+        return none;
+    }
+    return Kept(true, filtered, age / weight);
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let x = gid.x;
+    let y = gid.y;
+    if x >= params.width || y >= params.height {
+        return;
+    }
+    let cx = covering(x, params.width, params.low_width);
+    let cy = covering(y, params.height, params.low_height);
+    let lx = landed_from(x, params.anchor.x, params.width, params.low_width);
+    let ly = landed_from(y, params.anchor.y, params.height, params.low_height);
+    let landed = lx >= 0 && ly >= 0;
+    var sx = cx;
+    var sy = cy;
+    if landed {
+        sx = u32(lx);
+        sy = u32(ly);
+    }
+    let source = sy * params.low_width + sx;
+    let g = frame_record(source);
+    let c = frame_image[source].xyz;
+    let current_ok = finite3(c);
+    let fresh = landed && current_ok;
+
+    gather_neighbourhood(cx, cy);
+    let pixel = y * params.width + x;
+    var kept = Kept(false, vec3<f32>(0.0), 0.0);
+    if params.still != 0u {
+        let h = history_in[pixel];
+        kept = Kept(true, h.xyz, h.w);
+    } else if params.has_history != 0u {
+        kept = history_at(x, y, g.q);
+        if kept.valid && near_has_range {
+            kept.colour = min(max(kept.colour, near_lo), near_hi);
+        }
+    }
+    var cap = HISTORY_CAP;
+    if (g.tag & APPROX_FLAG) != 0u && params.eye_moved != 0u {
+        cap = SPECULAR_CAP;
+    }
+    var out = vec4<f32>(0.0);
+    if kept.valid && fresh {
+        let a = min(kept.age, cap);
+        let alpha = 1.0 / (a + 1.0);
+        out = vec4<f32>(kept.colour + (c - kept.colour) * alpha, a + 1.0);
+    } else if kept.valid {
+        out = vec4<f32>(kept.colour, min(kept.age, cap));
+    } else if fresh {
+        out = vec4<f32>(c, 1.0);
+    } else if current_ok {
+        out = vec4<f32>(c, 0.0);
+    }
+    history_out[pixel] = out;
+    geometry_out[2u * pixel] = frame_geometry[2u * source];
+    geometry_out[2u * pixel + 1u] = frame_geometry[2u * source + 1u];
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn tonemap_history(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= params.width || gid.y >= params.height {
+        return;
+    }
+    let i = gid.y * params.width + gid.x;
+    history_srgb8[i] = pack_srgb8(history_out[i].xyz);
+}

@@ -1,0 +1,160 @@
+//! The GPU's temporal mode against the CPU reference: the same sequence of frames gives the
+//! same accumulated history (bit for bit on a software adapter, which rounds as the CPU
+//! does), through camera motion, reduced scales, fractional S, cuts and resizes; and the
+//! history is shown without readback as the CPU tone-maps it.
+
+mod common;
+
+use common::{compare, gpu};
+use steadyray_render::{RenderSettings, Renderer, TemporalSettings};
+use steadyray_render_cpu::CpuRenderer;
+use steadyray_scene::{Camera, Vec3, builtin};
+
+/// One frame of a sequence: the camera and the frame's settings.
+type Step = (Camera, RenderSettings);
+
+fn settings(width: u32, height: u32, spp: f32, max_depth: u32) -> RenderSettings {
+    RenderSettings {
+        width,
+        height,
+        spp,
+        max_depth,
+    }
+}
+
+/// Renders `steps` on both backends with a `size` history (resetting before the steps in
+/// `cuts`) and checks every accumulated frame for parity.
+fn check_sequence(name: &str, scene_name: &str, size: (u32, u32), steps: &[Step], cuts: &[usize]) {
+    let Some(mut gpu) = gpu() else {
+        return;
+    };
+    let scene = builtin(scene_name).unwrap();
+    let mut cpu = CpuRenderer::new();
+    let history = TemporalSettings {
+        width: size.0,
+        height: size.1,
+    };
+    for r in [&mut *gpu as &mut dyn Renderer, &mut cpu] {
+        r.load_scene(&scene).unwrap();
+        r.set_temporal(Some(history)).unwrap();
+    }
+    let exact = gpu.adapter().is_software;
+    for (k, (camera, set)) in steps.iter().enumerate() {
+        if cuts.contains(&k) {
+            gpu.reset_history();
+            cpu.reset_history();
+        }
+        let g = gpu.render(camera, 0.0, set).unwrap();
+        let c = cpu.render(camera, 0.0, set).unwrap();
+        assert_eq!(
+            g.rays.per_depth[0], c.rays.per_depth[0],
+            "{name} frame {k}: eye rays"
+        );
+        if exact {
+            assert_eq!(g.rays, c.rays, "{name} frame {k}: ray counts");
+        }
+        let (gi, ci) = (gpu.read_image().unwrap(), cpu.read_image().unwrap());
+        assert_eq!(
+            (gi.width, gi.height),
+            size,
+            "{name} frame {k}: history size"
+        );
+        let diff = compare(&gi, &ci);
+        let what = format!(
+            "{name} frame {k} ({}x{} S={} R={})",
+            set.width, set.height, set.spp, set.max_depth
+        );
+        if exact {
+            assert_eq!(diff.max_linear, 0.0, "{what}: not bit-identical: {diff:?}");
+        } else {
+            diff.assert_parity(&what, false);
+        }
+    }
+    eprintln!("{name}: {} frames, parity held", steps.len());
+}
+
+#[test]
+fn a_sweep_with_changing_scale_and_quality() {
+    let scene = builtin("corridor").unwrap();
+    let (w, h) = (96, 54);
+    let qualities = [
+        (1.0, 1.0, 6),
+        (0.5, 1.0, 6),
+        (0.75, 2.5, 4),
+        (1.0, 1.5, 8),
+        (0.25, 1.0, 3),
+    ];
+    let steps: Vec<Step> = (0..15)
+        .map(|k| {
+            let (scale, spp, depth) = qualities[k % qualities.len()];
+            let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
+            (
+                scene.camera_at(k as u32, 90),
+                settings(side(w), side(h), spp, depth),
+            )
+        })
+        .collect();
+    check_sequence("corridor sweep", "corridor", (w, h), &steps, &[9]);
+}
+
+#[test]
+fn a_still_camera_then_a_moving_eye() {
+    let scene = builtin("corridor").unwrap();
+    let set = settings(64, 36, 1.0, 6);
+    let mut steps: Vec<Step> = (0..4).map(|_| (scene.camera, set)).collect();
+    // The eye walks toward the glass sphere: parallax, disocclusions, the specular cap.
+    steps.extend((0..6).map(|k| {
+        let eye = Vec3::new(0.1 * k as f32, 1.4, -0.3 * k as f32);
+        (
+            Camera::look_at(eye, Vec3::new(0.6, 0.45, -4.0), Vec3::Y, 50.0),
+            set,
+        )
+    }));
+    check_sequence("corridor walk", "corridor", (64, 36), &steps, &[]);
+}
+
+#[test]
+fn meshes_and_other_scenes() {
+    for name in ["cornell", "spheres"] {
+        let scene = builtin(name).unwrap();
+        let steps: Vec<Step> = (0..6)
+            .map(|k| {
+                (
+                    scene.camera_at(k, 64),
+                    settings(48, 32, 1.0 + 0.5 * (k % 2) as f32, 4),
+                )
+            })
+            .collect();
+        check_sequence(name, name, (64, 40), &steps, &[]);
+    }
+}
+
+#[test]
+fn the_shown_history_is_the_tone_mapped_history() {
+    let Some(mut gpu) = gpu() else {
+        return;
+    };
+    let scene = builtin("corridor").unwrap();
+    gpu.load_scene(&scene).unwrap();
+    gpu.set_temporal(Some(TemporalSettings {
+        width: 80,
+        height: 45,
+    }))
+    .unwrap();
+    for k in 0..3 {
+        gpu.render(&scene.camera_at(k, 90), 0.0, &settings(40, 23, 1.0, 4))
+            .unwrap();
+    }
+    let shown = gpu.read_srgb8().unwrap();
+    let image = gpu.read_image().unwrap();
+    assert_eq!((image.width, image.height), (80, 45));
+    let expected = image.to_srgb8_rgba();
+    let off = shown
+        .iter()
+        .zip(&expected)
+        .filter(|(a, b)| a.abs_diff(**b) > 1)
+        .count();
+    assert_eq!(shown.len(), expected.len());
+    assert_eq!(off, 0, "GPU tone map of the history differs from the CPU's");
+    gpu.set_temporal(None).unwrap();
+}
