@@ -24,6 +24,7 @@
 //! # Ok::<(), steadyray_display::DisplayError>(())
 //! ```
 
+pub mod aligned;
 pub mod clock;
 pub mod config;
 pub mod error;
@@ -33,6 +34,7 @@ pub mod stats;
 pub mod timeline;
 pub mod viewing;
 
+pub use aligned::aligned_band;
 pub use clock::{FrameSlot, MAX_DURATION_S, RealClock};
 pub use config::{DisplayConfig, MAX_REFRESH_HZ, SyncMode, VrrRange};
 pub use error::DisplayError;

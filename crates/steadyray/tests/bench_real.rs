@@ -123,6 +123,32 @@ fn bad_display_settings_are_clear_errors_and_write_nothing() {
         assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
         assert!(!out.exists(), "{args:?} wrote {}", out.display());
     }
+    // A band aligned with the display leaves the measured hand-over (1 ms simulated) and a
+    // 5 % margin under the refresh: at 60 Hz, [11.5, 14.83] ms for every refresh.
+    let output = bench(
+        &[
+            "--band",
+            "refresh",
+            "--duration",
+            "0.5",
+            "--controllers",
+            "fixed",
+            "--no-best-fixed",
+        ],
+        &out,
+    );
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let band = summary["band_ms"].as_array().unwrap();
+    assert!((band[0].as_f64().unwrap() - 11.5).abs() < 1e-9, "{band:?}");
+    assert!((band[1].as_f64().unwrap() - (1000.0 / 60.0 * 0.95 - 1.0)).abs() < 1e-9);
+    assert_eq!(summary["aligned_band"]["hand_over_ms"], 1.0);
+    std::fs::remove_dir_all(&out).unwrap();
     // An unwritable video folder fails before any run, not after them.
     let output = Command::new(BIN)
         .args([

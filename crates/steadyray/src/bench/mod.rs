@@ -40,7 +40,7 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 use steadyray_control::{Band, CONTROLLER_NAMES, Controller, Quality, Setup, from_name};
 use steadyray_display::model::refresh_at_or_after;
-use steadyray_display::{RealClock, ViewingSetup};
+use steadyray_display::{RealClock, ViewingSetup, aligned_band};
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -58,6 +58,12 @@ pub struct BenchArgs {
     /// Upper edge of the frame-time band, ms.
     #[arg(long, default_value_t = 20.0)]
     pub tmax: f64,
+    /// With --clock real: `refresh` derives the band from the display instead of --tmin and
+    /// --tmax: render times whose frames, handed over, make every refresh (`refresh:M`:
+    /// every M-th), with the hand-over measured before the runs (see
+    /// `steadyray_display::aligned_band`).
+    #[arg(long, value_name = "refresh[:M]", conflicts_with_all = ["tmin", "tmax"])]
+    pub band: Option<RefreshBand>,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
     /// `step:knob=both`, `predictive:order=depth,spp` or `fixed:spp=4 depth=16`. The first
     /// `fixed` also adds the best fixed quality (unless --no-best-fixed).
@@ -128,6 +134,48 @@ pub struct BenchArgs {
     /// reused.
     #[arg(long, value_name = "DIR")]
     pub video: Option<PathBuf>,
+}
+
+/// `--band refresh[:M]`: a band for frames shown every M-th refresh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RefreshBand {
+    pub multiple: u32,
+}
+
+impl std::str::FromStr for RefreshBand {
+    type Err = String;
+
+    fn from_str(text: &str) -> std::result::Result<Self, Self::Err> {
+        let bad = || format!("`{text}`: write refresh, or refresh:M with M a whole number >= 1");
+        let multiple = match text.trim().split_once(':') {
+            None if text.trim() == "refresh" => 1,
+            Some(("refresh", m)) => m.trim().parse::<u32>().map_err(|_| bad())?,
+            _ => return Err(bad()),
+        };
+        if multiple == 0 {
+            return Err(bad());
+        }
+        Ok(Self { multiple })
+    }
+}
+
+impl std::fmt::Display for RefreshBand {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.multiple {
+            1 => write!(f, "refresh"),
+            m => write!(f, "refresh:{m}"),
+        }
+    }
+}
+
+/// The median hand-over cost of `frames` frames at the path's start at quality `q`, ms.
+fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) -> Result<f64> {
+    let mut times = Vec::new();
+    for _ in 0..frames {
+        source.frame(source::PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
+        times.push(source.hand_over()?.ms);
+    }
+    steadyray_display::stats::quantile(&times, 0.5).context("no frame to measure the hand-over")
 }
 
 /// The real clock's settings, checked.
@@ -211,23 +259,29 @@ fn default_resolution(backend: &str, device: &str) -> (u32, u32) {
 
 /// Runs the experiment and writes its reports.
 pub fn run(args: &BenchArgs) -> Result<()> {
-    let band = Band::new(args.tmin, args.tmax)?;
     let bounds = args.bounds.bounds()?;
     let start = Quality {
         spp: bounds.spp_min,
         depth: args.fixed_depth.unwrap_or(bounds.depth_max),
         scale: bounds.scale_max,
     };
-    let setup = Setup::new(band, bounds, start).context("--fixed-depth is outside the R bounds")?;
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }
     let real = real_options(args)?;
     let specs = parse_controllers(&args.controllers)?;
-    let mut controllers = specs
-        .iter()
-        .map(|s| Ok((s, from_name(&s.name, setup, &s.options)?)))
-        .collect::<Result<Vec<_>>>()?;
+    let build = |band: Band| -> Result<(Setup, Vec<Box<dyn Controller>>)> {
+        let setup =
+            Setup::new(band, bounds, start).context("--fixed-depth is outside the R bounds")?;
+        let controllers = specs
+            .iter()
+            .map(|s| Ok(from_name(&s.name, setup, &s.options)?))
+            .collect::<Result<Vec<_>>>()?;
+        Ok((setup, controllers))
+    };
+    // Checks the controllers before anything renders (a band aligned with the display is
+    // only known once the hand-over is measured).
+    build(Band::new(args.tmin, args.tmax)?)?;
     if let Some(dir) = &args.video {
         video::prepare(dir)?;
     }
@@ -252,6 +306,26 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         };
         (Box::new(source), name)
     };
+    let (band, aligned) = match (&args.band, &real) {
+        (None, _) => (Band::new(args.tmin, args.tmax)?, None),
+        (Some(_), None) => bail!("--band refresh needs --clock real"),
+        (Some(choice), Some(options)) => {
+            let hand_over_ms = measure_hand_over(source.as_mut(), start, args.warmup.max(5))?;
+            let (tmin, tmax) = aligned_band(&options.display, choice.multiple, hand_over_ms)?;
+            eprintln!(
+                "bench: --band {choice}: hand-over {hand_over_ms:.2} ms (median at the start quality), band [{tmin:.2}, {tmax:.2}] ms"
+            );
+            (
+                Band::new(tmin, tmax)?,
+                Some(report::AlignedBand {
+                    refreshes: choice.multiple,
+                    hand_over_ms,
+                }),
+            )
+        }
+    };
+    let (setup, controllers) = build(band)?;
+    let mut controllers: Vec<_> = specs.iter().zip(controllers).collect();
     let real = match real {
         Some(options) => {
             let duration_s = args.duration.unwrap_or_else(|| source.path_duration_s());
@@ -401,7 +475,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             best_fixed_due = false;
             progress.inc_length(per_run);
             let best = search_best_fixed(source.as_mut(), &sweep, args.search_views, &progress)?;
-            let mut fixed = from_name("fixed", Setup::new(band, bounds, best)?, "")?;
+            let mut fixed = from_name(
+                "fixed",
+                Setup {
+                    start: best,
+                    ..setup
+                },
+                "",
+            )?;
             let label = format!("best fixed {}", quality_label(&best, &bounds));
             runs.push(keep(run_one(source.as_mut(), fixed.as_mut(), &label)?)?);
         }
@@ -501,6 +582,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             reference: (args.quality || args.video.is_some())
                 .then(|| reference_quality.to_string()),
             every: args.quality.then_some(args.every),
+            aligned_band: aligned,
         }),
     };
     record::write_frames_csv(&runs, &args.out.join("frames.csv"))?;
@@ -556,6 +638,17 @@ mod tests {
         let err = parse_controllers("fixed,bogus").unwrap_err().to_string();
         assert!(err.contains("bogus") && err.contains("predictive"), "{err}");
         assert!(parse_controllers(" , ").is_err());
+    }
+
+    #[test]
+    fn refresh_bands_parse() {
+        assert_eq!("refresh".parse(), Ok(RefreshBand { multiple: 1 }));
+        assert_eq!("refresh:2".parse(), Ok(RefreshBand { multiple: 2 }));
+        for bad in ["refresh:0", "refresh:x", "vsync", "refresh:"] {
+            let err = bad.parse::<RefreshBand>().unwrap_err();
+            assert!(err.contains("refresh:M"), "{bad}: {err}");
+        }
+        assert_eq!(RefreshBand { multiple: 2 }.to_string(), "refresh:2");
     }
 
     #[test]

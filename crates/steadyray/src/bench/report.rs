@@ -48,6 +48,18 @@ pub struct RealContext {
     /// Displayed FLIP measures refreshes 0, K, 2K, ...
     #[serde(skip_serializing_if = "Option::is_none")]
     pub every: Option<u32>,
+    /// How `--band refresh` derived the band.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aligned_band: Option<AlignedBand>,
+}
+
+/// A band derived from the display (`--band refresh[:M]`).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct AlignedBand {
+    /// Frames shown every this many refreshes.
+    pub refreshes: u32,
+    /// The measured hand-over the band leaves room for, ms.
+    pub hand_over_ms: f64,
 }
 
 #[derive(Serialize)]
