@@ -11,7 +11,8 @@ use std::path::PathBuf;
 use steadyray_accel::{Bvh, T_MIN};
 use steadyray_render::sampling::{cosine_direction, pcg_hash, unit_from_hash};
 use steadyray_scene::Camera;
-use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
+use steadyray_scene::Transform;
+use steadyray_scene::mesh_import::import_mesh;
 
 const WIDTH: u32 = 480;
 const HEIGHT: u32 = 270;
@@ -55,7 +56,7 @@ fn rays(bvh: &Bvh, tris: &[[Vec3; 3]]) -> (Vec<Ray>, Vec<Ray>) {
 
 fn traversal(c: &mut Criterion) {
     let path = bunny_path();
-    let mesh = match import_mesh(&path, &MeshTransform::default()) {
+    let mesh = match import_mesh(&path, &Transform::default()) {
         Ok(imported) => imported.mesh,
         Err(why) => {
             eprintln!("BVH benchmarks skipped: cannot load the bunny: {why}");

@@ -64,7 +64,7 @@ fn reinsertion_ratio(triangles: usize) -> f32 {
 
 /// A wide layout being written: its nodes, and how a lane and a leaf child are written.
 /// `W` is its width.
-trait Layout<const W: usize> {
+pub(crate) trait Layout<const W: usize> {
     type Node: Copy;
     /// A node with every lane unused.
     const EMPTY: Self::Node;
@@ -245,7 +245,7 @@ fn emit<const W: usize, L: Layout<W>>(
 
 /// Lays out the tree `bvh2` as layout `out`; returns the most children its traversal can
 /// leave pending. A root that is a leaf becomes one node with that leaf in its first lane.
-fn lay_out<const W: usize, L: Layout<W>>(bvh2: &Bvh2, out: &mut L) -> usize {
+pub(crate) fn lay_out<const W: usize, L: Layout<W>>(bvh2: &Bvh2, out: &mut L) -> usize {
     let root = &bvh2.nodes[0];
     if root.prim_count == 0 {
         let mut pending = 0;

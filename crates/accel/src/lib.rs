@@ -10,6 +10,10 @@
 //!   structure-of-arrays lanes, which [`Bvh::closest`] and [`Bvh::any_hit`] traverse on the
 //!   CPU (with AVX2, or AVX-512, where the CPU has it).
 //!
+//! [`TopLevel`] is the top level of the renderers' two-level BVH: a tree over a frame's
+//! objects (spheres, quads, mesh instances), rebuilt or refitted every frame, in either
+//! layout; each mesh's [`Bvh`] is its bottom level.
+//!
 //! Triangles are intersected with the watertight test of Woop, Benthin and Wald
 //! ([`WatertightRay`]); box tests are widened by a few ulps so that the BVH finds exactly
 //! the hits a brute-force loop over all triangles finds, ties included (the lowest input
@@ -18,12 +22,14 @@
 mod box_test;
 mod build;
 mod gpu_node;
+mod top_level;
 mod tri4;
 mod watertight;
 mod wide;
 
 pub use build::BvhError;
 pub use gpu_node::{GPU_EMPTY, GPU_LEAF, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
+pub use top_level::{Bounds, TopLayout, TopLevel, Update, pad};
 pub use watertight::{T_MIN, TriangleVerts, WatertightRay};
 
 use glam::{Vec3, Vec3A};

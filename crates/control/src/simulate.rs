@@ -63,6 +63,38 @@ impl Load {
         (per_depth, shadow.round() as u64)
     }
 
+    /// This load with a swarm of objects in view (the world changing, not the camera):
+    /// `coverage` of the eye rays now hit a swarm object, which sends `bounce` of them on as
+    /// a mirror would (they then go on as the load's first bounces do) and each takes a
+    /// shadow ray per light (`lights`); and the scene holds `object_factor` times the
+    /// objects, so each ray's BVH traversal costs more by the depth of the tree, which grows
+    /// as the logarithm of the object count: the cost per ray is multiplied by
+    /// 1 + log2(object_factor) / `tree_depth` (`tree_depth` the levels of the tree before).
+    pub fn with_swarm(
+        mut self,
+        coverage: f64,
+        bounce: f64,
+        lights: f64,
+        object_factor: f64,
+        tree_depth: f64,
+    ) -> Self {
+        let extra = coverage * bounce;
+        let first = self.reach.get(1).copied().unwrap_or(0.0);
+        // The rays the swarm sends on continue as the load's own first bounces do.
+        let keep: Vec<f64> = self
+            .reach
+            .iter()
+            .map(|&r| if first > 0.0 { r / first } else { 0.0 })
+            .collect();
+        for (k, r) in self.reach.iter_mut().enumerate().skip(1) {
+            let follow = if k == 1 { 1.0 } else { keep[k] };
+            *r = (*r + extra * follow).min(1.0);
+        }
+        self.shadow_eye += coverage * lights;
+        self.cost_factor *= 1.0 + object_factor.max(1.0).log2() / tree_depth.max(1.0);
+        self
+    }
+
     /// Rays per eye sample at depth R, shadows included: the load's weight at that depth.
     pub fn rays_per_sample(&self, depth: u32) -> f64 {
         let (per_depth, shadow) = self.rays(1e6, depth);
@@ -104,6 +136,15 @@ pub enum LoadProfile {
         before: Load,
         after: Load,
         at: usize,
+    },
+    /// `during` from frame `from` until (not including) frame `until`, `base` before and
+    /// after: objects that appear at once and vanish again (a swarm, see
+    /// [`Load::with_swarm`]).
+    Interval {
+        base: Load,
+        during: Load,
+        from: usize,
+        until: usize,
     },
     /// The corridor sweep: frame k of `frames` has yaw θ = 2π·k/frames.
     Corridor { frames: usize },
@@ -151,6 +192,18 @@ impl LoadProfile {
                     after.clone()
                 }
             }
+            Self::Interval {
+                base,
+                during,
+                from,
+                until,
+            } => {
+                if (*from..*until).contains(&frame) {
+                    during.clone()
+                } else {
+                    base.clone()
+                }
+            }
             Self::Corridor { frames } => {
                 corridor_load(TAU * frame as f64 / (*frames).max(1) as f64)
             }
@@ -159,11 +212,16 @@ impl LoadProfile {
     }
 
     /// The frames where the load changes suddenly (for [`crate::metrics::summarize`]): the
-    /// step's frame, or where the weight at depth 8 changes by 1.5x or more between frames.
+    /// step's frame, an interval's two ends, or where the weight at depth 8 changes by 1.5x
+    /// or more between frames.
     pub fn changes(&self, frames: usize) -> Vec<usize> {
         match self {
             Self::Constant(_) | Self::Corridor { .. } => Vec::new(),
             Self::Step { at, .. } => (*at < frames).then_some(*at).into_iter().collect(),
+            Self::Interval { from, until, .. } => [*from, *until]
+                .into_iter()
+                .filter(|&f| f < frames)
+                .collect(),
             Self::Frames(_) => (1..frames)
                 .filter(|&i| {
                     let (a, b) = (

@@ -229,6 +229,79 @@ fn returns_to_the_highest_quality_when_the_load_drops() {
     }
 }
 
+/// A swarm of objects appearing at once in view and vanishing 150 frames later: the world
+/// changes, not the camera. A quarter of the eye rays then hit swarm objects (mirrors: most
+/// of those bounce on, each takes two shadow rays) and the scene holds 20 times the
+/// objects (each ray's BVH traversal a few levels deeper), so within one frame the rays per
+/// depth and the cost per ray jump. Over a light view (the highest quality fits the band)
+/// and a heavy one (the band sets the quality), both adaptive controllers settle within
+/// five frames of each change and, once the swarm is gone, come back to the quality they
+/// held before it: the highest the band allows.
+#[test]
+fn a_swarm_appearing_and_vanishing_is_settled_within_five_frames() {
+    let (from, until, frames) = (150, 300, 500);
+    for (view, theta) in [("light view", FRAC_PI_2), ("heavy view", 0.5)] {
+        let base = corridor_load(theta);
+        let swarm = base.clone().with_swarm(0.25, 0.8, 2.0, 20.0, 4.0);
+        let model = RendererModel::corridor(720);
+        let (before_ms, during_ms) = (
+            model.ideal_ms(&top(), &base),
+            model.ideal_ms(&top(), &swarm),
+        );
+        assert!(
+            during_ms > 2.0 * before_ms,
+            "{view}: the swarm takes {during_ms:.1} ms against {before_ms:.1} ms"
+        );
+        let profile = LoadProfile::Interval {
+            base,
+            during: swarm,
+            from,
+            until,
+        };
+        for name in ["hysteresis", "predictive"] {
+            let (records, s) = step_run(name, profile.clone(), frames);
+            show(&format!("{name} swarm, {view}"), &s);
+            assert_eq!(
+                (s.settle_events, s.unsettled),
+                (2, 0),
+                "{name} {view}: {s:?}"
+            );
+            assert!(s.settle_max.unwrap() <= 5, "{name} {view}: {s:?}");
+            // The rays per depth jump within the frame the swarm appears.
+            let level = |r: &FrameRecord| r.rays as f64 / f64::from(r.quality.spp);
+            assert!(
+                level(&records[from]) > 1.2 * level(&records[from - 1]),
+                "{name} {view}: rays per eye ray {} -> {}",
+                level(&records[from - 1]),
+                level(&records[from])
+            );
+            // Afterwards, back to the quality held before the swarm.
+            let mean_spp = |r: &[FrameRecord]| {
+                r.iter().map(|r| f64::from(r.quality.spp)).sum::<f64>() / r.len() as f64
+            };
+            let before = mean_spp(&records[from - 50..from]);
+            let after = mean_spp(&records[until + 100..]);
+            println!("{name} {view}: mean S {before:.2} before, {after:.2} after");
+            assert!(
+                (after - before).abs() <= 0.1 * before,
+                "{name} {view}: mean S {before:.2} before the swarm, {after:.2} after"
+            );
+            assert!(
+                records[until + 100..]
+                    .iter()
+                    .all(|r| r.quality.depth == records[from - 1].quality.depth),
+                "{name} {view}: R changed"
+            );
+            if view == "light view" {
+                assert!(
+                    records[until + 100..].iter().all(|r| r.quality == top()),
+                    "{name}: not back at the highest quality"
+                );
+            }
+        }
+    }
+}
+
 /// The qualities of a run where `spikes` frames are 10x hitches, and of the same run without.
 fn with_and_without_spike(name: &str, spike_at: usize) -> (Vec<Quality>, Vec<Quality>) {
     let mut model =

@@ -140,7 +140,7 @@ mod tests {
     #[test]
     fn the_pans_path_is_still_then_slow_then_fast() {
         let (mut scene, probe) = corridor_probe();
-        scene.path = CameraPath::Pans { frames: 720 };
+        scene.path = CameraPath::pans(720);
         let at = |t: f64| {
             probe
                 .measure(&shot(&scene, t - 1.0 / 60.0), &shot(&scene, t))

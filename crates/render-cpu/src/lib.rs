@@ -1,8 +1,10 @@
 //! The reference Whitted ray tracer of steadyray, on the CPU with rayon.
 //!
 //! It computes exactly the shading model of `docs/shading.md` in `f32`; the GPU backend is
-//! checked against it. Spheres, two-sided quads, infinite planes and triangle meshes (with a
-//! watertight triangle test) are intersected by brute force over flat per-type lists.
+//! checked against it. Spheres, two-sided quads and mesh copies sit in a two-level BVH
+//! (`steadyray_render::two_level`): a top level over the frame's objects, updated when the
+//! scene time changes, and one bottom-level triangle BVH per mesh (watertight triangle test),
+//! shared by its copies. Infinite planes are tested one by one.
 
 mod device;
 mod integrator;
@@ -83,7 +85,8 @@ impl CpuRenderer {
 
     /// Traces one ray from `origin` along `dir` exactly as the eye sample `sample` of pixel
     /// `pixel` would be traced with depth `max_depth` (the pixel and sample only choose the
-    /// dielectric branches), and returns its whole path.
+    /// dielectric branches), and returns its whole path. Moving objects are where the last
+    /// rendered frame had them (at time 0 after `load_scene`).
     pub fn trace_ray(
         &self,
         origin: Vec3,
@@ -140,12 +143,14 @@ impl Renderer for CpuRenderer {
     ) -> Result<FrameStats, RenderError> {
         settings.validate()?;
         check_time(time_s)?;
-        let world = self.world.as_ref().ok_or(RenderError::NoScene)?;
+        let world = self.world.as_mut().ok_or(RenderError::NoScene)?;
         let (width, height) = (settings.width, settings.height);
         if let Some(history) = &self.history {
             history.clock.settings().check(settings)?;
         }
         let start = Instant::now();
+        let accel_ms = self.pool.install(|| world.set_time(time_s))?;
+        let world = &*world;
         let counts = match &mut self.history {
             None => {
                 let image = match &mut self.image {
@@ -186,6 +191,7 @@ impl Renderer for CpuRenderer {
         let ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(FrameStats {
             render_ms: ms,
+            accel_ms,
             wall_ms: ms,
             timing: TimingSource::WallClock,
             samples: rays.per_depth[0],

@@ -1,15 +1,20 @@
-//! The scene prepared for tracing: flat per-type primitive lists, materials, lights, and
-//! the closest-hit and shadow queries over them.
+//! The scene prepared for tracing: materials, lights and planes, each mesh's bottom-level
+//! BVH (built once per scene), and the frame's top level over its spheres, quads and mesh
+//! copies (rebuilt or refitted when the scene time changes), with the closest-hit and
+//! shadow queries over them.
 
 use crate::material::{Mat, checker_is_odd};
 use crate::plane::Plane;
 use crate::quad::Quad;
 use crate::ray::Ray;
 use crate::sphere::Sphere;
-use crate::triangle::{Triangle, Triangles};
+use crate::triangle::MeshBvh;
 use glam::Vec3A;
+use std::time::Instant;
+use steadyray_accel::{Bounds, TopLayout, TopLevel};
 use steadyray_render::RenderError;
-use steadyray_scene::{Scene, Shape};
+use steadyray_render::two_level::{Instance, Leaf, SceneLayout};
+use steadyray_scene::Scene;
 
 /// Which primitive a ray hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,7 +22,11 @@ pub(crate) enum Prim {
     Sphere(u32),
     Quad(u32),
     Plane(u32),
-    Triangle(u32),
+    /// Triangle `tri` of the mesh of the frame's instance `instance`.
+    Triangle {
+        instance: u32,
+        tri: u32,
+    },
 }
 
 /// The nearest intersection of a ray.
@@ -34,30 +43,60 @@ pub(crate) struct Light {
     pub intensity: Vec3A,
 }
 
-/// Everything the integrator reads, built once per `load_scene`.
+/// What a top-level leaf is: an index into the frame's spheres, quads or instances.
+#[derive(Clone, Copy, Debug)]
+enum LeafRef {
+    Sphere(u32),
+    Quad(u32),
+    Instance(u32),
+}
+
+/// Everything the integrator reads: built by `load_scene`, its top level brought to a
+/// scene time by [`World::set_time`].
 #[derive(Clone, Debug)]
 pub(crate) struct World {
-    spheres: Vec<Sphere>,
-    quads: Vec<Quad>,
+    scene: Scene,
+    layout: SceneLayout,
     planes: Vec<Plane>,
-    triangles: Triangles,
+    meshes: Vec<MeshBvh>,
     materials: Vec<Mat>,
     pub lights: Vec<Light>,
     pub ambient: f32,
     pub background: Vec3A,
+    /// The frame's leaves: per leaf (its index is its key), what it is.
+    leaf_refs: Vec<LeafRef>,
+    spheres: Vec<Sphere>,
+    quads: Vec<Quad>,
+    /// The temporal mode's surface ids of the frame's spheres and quads.
+    sphere_ids: Vec<u32>,
+    quad_ids: Vec<u32>,
+    instances: Vec<Instance>,
+    top: TopLevel,
+    /// The time the leaves were placed at; `None` before the first placement.
+    time_s: Option<f64>,
+    /// Scratch for the frame's leaves and boxes.
+    leaves: Vec<Leaf>,
+    boxes: Vec<Bounds>,
 }
 
 impl World {
-    /// Prepares `scene`, refusing what would make tracing panic or produce NaNs everywhere:
-    /// bad material or vertex indices, non-positive radii, degenerate quads.
+    /// Prepares `scene` at time 0, refusing what would make tracing panic or produce NaNs
+    /// everywhere (see [`SceneLayout::new`]).
     pub fn new(scene: &Scene) -> Result<Self, RenderError> {
-        let bad = |name: &str, why: &str| RenderError::Scene(format!("object {name:?}: {why}"));
-        let mut triangles = Vec::new();
+        let layout = SceneLayout::new(scene)?;
+        let meshes = layout
+            .meshes
+            .iter()
+            .map(MeshBvh::new)
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| RenderError::Scene(format!("scene {:?}: meshes: {e}", scene.name)))?;
         let mut world = World {
-            spheres: Vec::new(),
-            quads: Vec::new(),
-            planes: Vec::new(),
-            triangles: Triangles::default(),
+            planes: layout
+                .planes
+                .iter()
+                .map(|p| Plane::new(p.point, p.normal, p.material))
+                .collect(),
+            meshes,
             materials: scene.materials.iter().map(|(_, m)| Mat::from(m)).collect(),
             lights: scene
                 .lights
@@ -69,76 +108,131 @@ impl World {
                 .collect(),
             ambient: scene.ambient,
             background: scene.background.into(),
+            scene: scene.clone(),
+            layout,
+            leaf_refs: Vec::new(),
+            spheres: Vec::new(),
+            quads: Vec::new(),
+            sphere_ids: Vec::new(),
+            quad_ids: Vec::new(),
+            instances: Vec::new(),
+            top: TopLevel::build(&[], TopLayout::Cpu).map_err(top_error)?,
+            time_s: None,
+            leaves: Vec::new(),
+            boxes: Vec::new(),
         };
-        for obj in &scene.objects {
-            if obj.material >= world.materials.len() {
-                return Err(bad(&obj.name, "material index out of range"));
-            }
-            let m = obj.material as u32;
-            match &obj.shape {
-                &Shape::Sphere { center, radius } => {
-                    if !(radius > 0.0 && radius.is_finite()) {
-                        return Err(bad(&obj.name, "sphere radius must be positive"));
-                    }
-                    world.spheres.push(Sphere::new(center, radius, m));
-                }
-                &Shape::Quad {
-                    corner,
-                    edge_u,
-                    edge_v,
-                } => {
-                    let quad = Quad::new(corner, edge_u, edge_v, m)
-                        .ok_or_else(|| bad(&obj.name, "quad edges are parallel"))?;
-                    world.quads.push(quad);
-                }
-                &Shape::Plane { point, normal } => {
-                    if normal.length_squared() == 0.0 || !normal.is_finite() {
-                        return Err(bad(&obj.name, "plane normal must be a non-zero vector"));
-                    }
-                    world.planes.push(Plane::new(point, normal, m));
-                }
-                Shape::Mesh(mesh) => {
-                    for tri in &mesh.triangles {
-                        let mut v = [glam::Vec3::ZERO; 3];
-                        for (corner, &vi) in v.iter_mut().zip(tri) {
-                            *corner = *mesh
-                                .positions
-                                .get(vi as usize)
-                                .ok_or_else(|| bad(&obj.name, "vertex index out of range"))?;
-                        }
-                        // Degenerate triangles cannot be hit; skip rather than refuse.
-                        triangles.extend(Triangle::new(v, m));
-                    }
-                }
-            }
-        }
-        world.triangles = Triangles::new(triangles)
-            .map_err(|e| RenderError::Scene(format!("scene {:?}: meshes: {e}", scene.name)))?;
+        world.set_time(0.0)?;
         Ok(world)
     }
 
-    /// The nearest surface hit by `ray` on t in (T_MIN, ∞).
+    /// Places the scene's objects as they are at `time_s` and brings the top level up to
+    /// date (refit or rebuild); returns the time this took, ms. A scene where nothing moves
+    /// is placed once.
+    pub fn set_time(&mut self, time_s: f64) -> Result<f64, RenderError> {
+        if self.time_s.is_some() && !self.layout.animated {
+            return Ok(0.0);
+        }
+        let start = Instant::now();
+        self.layout
+            .leaves_at(&self.scene, time_s, &mut self.leaves, &mut self.boxes);
+        self.leaf_refs.clear();
+        self.spheres.clear();
+        self.quads.clear();
+        self.sphere_ids.clear();
+        self.quad_ids.clear();
+        self.instances.clear();
+        let mut next_id = self.planes.len() as u32;
+        for leaf in &self.leaves {
+            let leaf_ref = match *leaf {
+                Leaf::Sphere {
+                    center,
+                    radius,
+                    material,
+                } => {
+                    self.spheres.push(Sphere::new(center, radius, material));
+                    self.sphere_ids.push(next_id);
+                    next_id += 1;
+                    LeafRef::Sphere(self.spheres.len() as u32 - 1)
+                }
+                Leaf::Quad {
+                    corner,
+                    edge_u,
+                    edge_v,
+                    material,
+                } => {
+                    // The layout gives only quads with area, by the same test.
+                    let quad = Quad::new(corner, edge_u, edge_v, material).ok_or_else(|| {
+                        RenderError::Scene(format!("a quad at {corner} has no area"))
+                    })?;
+                    self.quads.push(quad);
+                    self.quad_ids.push(next_id);
+                    next_id += 1;
+                    LeafRef::Quad(self.quads.len() as u32 - 1)
+                }
+                Leaf::Instance(instance) => {
+                    self.instances.push(instance);
+                    LeafRef::Instance(self.instances.len() as u32 - 1)
+                }
+            };
+            self.leaf_refs.push(leaf_ref);
+        }
+        self.top.update(&self.boxes).map_err(top_error)?;
+        self.time_s = Some(time_s);
+        Ok(start.elapsed().as_secs_f64() * 1e3)
+    }
+
+    /// The nearest surface hit by `ray` on t in (T_MIN, ∞): the nearest leaf of the top
+    /// level (ties to the lowest key, then the lowest triangle), then the planes, which win
+    /// only when strictly nearer.
     #[inline]
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        let mut t_max = f32::INFINITY;
-        let mut take = |t: Option<f32>, prim: Prim, t_max: &mut f32| {
-            if let Some(t) = t {
-                *t_max = t;
-                best = Some(Hit { t, prim });
-            }
-        };
-        for (i, s) in self.spheres.iter().enumerate() {
-            take(s.intersect(ray, t_max), Prim::Sphere(i as u32), &mut t_max);
-        }
-        for (i, q) in self.quads.iter().enumerate() {
-            take(q.intersect(ray, t_max), Prim::Quad(i as u32), &mut t_max);
-        }
+        let mut best_key = u32::MAX;
+        let t_leaf = self
+            .top
+            .closest(ray.origin, ray.dir, f32::INFINITY, |key, best_t| {
+                let (t, prim) = match self.leaf_refs[key as usize] {
+                    LeafRef::Sphere(i) => {
+                        let Some(t) = self.spheres[i as usize].intersect(ray, f32::INFINITY) else {
+                            return best_t;
+                        };
+                        (t, Prim::Sphere(i))
+                    }
+                    LeafRef::Quad(i) => {
+                        let Some(t) = self.quads[i as usize].intersect(ray, f32::INFINITY) else {
+                            return best_t;
+                        };
+                        (t, Prim::Quad(i))
+                    }
+                    LeafRef::Instance(i) => {
+                        let instance = &self.instances[i as usize];
+                        let (o, d) = instance.ray_to_mesh(ray.origin, ray.dir);
+                        // Hits at best_t too, so that a lower key can take a tie.
+                        let Some((t, tri)) =
+                            self.meshes[instance.mesh as usize].closest(o, d, best_t.next_up())
+                        else {
+                            return best_t;
+                        };
+                        (t, Prim::Triangle { instance: i, tri })
+                    }
+                };
+                if t < best_t || (t == best_t && key < best_key) {
+                    best = Some(Hit { t, prim });
+                    best_key = key;
+                    t
+                } else {
+                    best_t
+                }
+            });
+        let mut t_max = t_leaf;
         for (i, p) in self.planes.iter().enumerate() {
-            take(p.intersect(ray, t_max), Prim::Plane(i as u32), &mut t_max);
-        }
-        if let Some((t, i)) = self.triangles.closest(ray, t_max) {
-            take(Some(t), Prim::Triangle(i), &mut t_max);
+            if let Some(t) = p.intersect(ray, t_max) {
+                t_max = t;
+                best = Some(Hit {
+                    t,
+                    prim: Prim::Plane(i as u32),
+                });
+            }
         }
         best
     }
@@ -146,15 +240,20 @@ impl World {
     /// Whether any surface is hit on t in (T_MIN, t_max) (shadow rays).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.spheres
+        self.planes
             .iter()
-            .any(|s| s.intersect(ray, t_max).is_some())
-            || self.quads.iter().any(|q| q.intersect(ray, t_max).is_some())
-            || self
-                .planes
-                .iter()
-                .any(|p| p.intersect(ray, t_max).is_some())
-            || self.triangles.any_hit(ray, t_max)
+            .any(|p| p.intersect(ray, t_max).is_some())
+            || self.top.any_hit(ray.origin, ray.dir, t_max, |key| {
+                match self.leaf_refs[key as usize] {
+                    LeafRef::Sphere(i) => self.spheres[i as usize].intersect(ray, t_max).is_some(),
+                    LeafRef::Quad(i) => self.quads[i as usize].intersect(ray, t_max).is_some(),
+                    LeafRef::Instance(i) => {
+                        let instance = &self.instances[i as usize];
+                        let (o, d) = instance.ray_to_mesh(ray.origin, ray.dir);
+                        self.meshes[instance.mesh as usize].any_hit(o, d, t_max)
+                    }
+                }
+            })
     }
 
     /// The outward (unflipped) geometric normal of `prim` at `p`.
@@ -164,7 +263,10 @@ impl World {
             Prim::Sphere(i) => self.spheres[i as usize].normal(p),
             Prim::Quad(i) => self.quads[i as usize].normal(),
             Prim::Plane(i) => self.planes[i as usize].normal(),
-            Prim::Triangle(i) => self.triangles.get(i).normal,
+            Prim::Triangle { instance, tri } => {
+                let instance = &self.instances[instance as usize];
+                instance.normal_to_world(self.meshes[instance.mesh as usize].normal(tri))
+            }
         }
     }
 
@@ -175,22 +277,23 @@ impl World {
             Prim::Sphere(i) => self.spheres[i as usize].material,
             Prim::Quad(i) => self.quads[i as usize].material,
             Prim::Plane(i) => self.planes[i as usize].material,
-            Prim::Triangle(i) => self.triangles.get(i).material,
+            Prim::Triangle { instance, .. } => self.instances[instance as usize].material,
         };
         &self.materials[m as usize]
     }
 
-    /// The temporal mode's surface id of `prim` (`docs/temporal.md`): spheres, quads and
-    /// planes numbered in that order (each kind in object order), every mesh triangle one id
-    /// after them.
+    /// The temporal mode's surface id of `prim` (`docs/temporal.md`): the planes in object
+    /// order, then the frame's spheres and quads in object order (as the GPU packs its
+    /// shapes), every mesh triangle one id after them.
     #[inline]
     pub fn surface_id(&self, prim: Prim) -> u32 {
-        let (spheres, quads) = (self.spheres.len() as u32, self.quads.len() as u32);
         match prim {
-            Prim::Sphere(i) => i,
-            Prim::Quad(i) => spheres + i,
-            Prim::Plane(i) => spheres + quads + i,
-            Prim::Triangle(_) => spheres + quads + self.planes.len() as u32,
+            Prim::Sphere(i) => self.sphere_ids[i as usize],
+            Prim::Quad(i) => self.quad_ids[i as usize],
+            Prim::Plane(i) => i,
+            Prim::Triangle { .. } => {
+                (self.planes.len() + self.spheres.len() + self.quads.len()) as u32
+            }
         }
     }
 
@@ -214,7 +317,11 @@ impl World {
                 let (u, v) = self.planes[i as usize].surface_uv(p);
                 checker_is_odd(&[u, v], size)
             }
-            Prim::Sphere(_) | Prim::Triangle(_) => checker_is_odd(&p.to_array(), size),
+            Prim::Sphere(_) | Prim::Triangle { .. } => checker_is_odd(&p.to_array(), size),
         }
     }
+}
+
+fn top_error(e: steadyray_accel::BvhError) -> RenderError {
+    RenderError::Scene(format!("top-level BVH: {e}"))
 }

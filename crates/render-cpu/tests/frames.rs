@@ -6,7 +6,7 @@ use common::*;
 use steadyray_render::sampling::samples_for_pixel;
 use steadyray_render::{RenderError, RenderSettings, Renderer, SettingsError};
 use steadyray_render_cpu::CpuRenderer;
-use steadyray_scene::{Shape, TriangleMesh, Vec3};
+use steadyray_scene::{Shape, Transform, TriangleMesh, Vec3};
 
 #[test]
 fn the_same_frame_twice_is_bit_identical_on_any_thread_count() {
@@ -175,10 +175,13 @@ fn broken_scenes_are_refused() {
     let bad_vertex = scene(
         vec![diffuse(Vec3::ONE)],
         vec![(
-            Shape::Mesh(TriangleMesh {
-                positions: vec![Vec3::ZERO, Vec3::X],
-                triangles: vec![[0, 1, 2]],
-            }),
+            Shape::mesh(
+                TriangleMesh {
+                    positions: vec![Vec3::ZERO, Vec3::X],
+                    triangles: vec![[0, 1, 2]],
+                },
+                Transform::IDENTITY,
+            ),
             0,
         )],
         vec![],
@@ -210,10 +213,13 @@ fn a_mesh_renders_like_the_quad_it_triangulates() {
         edge_u: eu,
         edge_v: ev,
     };
-    let mesh = Shape::Mesh(TriangleMesh {
-        positions: vec![corner, corner + eu, corner + eu + ev, corner + ev],
-        triangles: vec![[0, 1, 2], [0, 2, 3]],
-    });
+    let mesh = Shape::mesh(
+        TriangleMesh {
+            positions: vec![corner, corner + eu, corner + eu + ev, corner + ev],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        },
+        Transform::IDENTITY,
+    );
     let build = |shape: Shape| {
         scene(
             vec![diffuse(v([0.9, 0.6, 0.3]))],

@@ -33,6 +33,12 @@ pub const CAST_TILE: u32 = 8;
 /// [`GpuCastHit::id`] of a ray that hits nothing.
 pub const CAST_MISS: u32 = u32::MAX;
 
+/// Set in [`GpuTopLeaf::index`] when the leaf is an instance (the bits below index the
+/// instance buffer); clear for a sphere or quad (they index the shape buffer).
+pub const TOP_INSTANCE: u32 = 1 << 31;
+/// The instance of a hit that is not on a mesh.
+pub const NO_INSTANCE: u32 = u32::MAX;
+
 /// [`GpuShape::kind`] of a sphere.
 pub const SHAPE_SPHERE: u32 = 0;
 /// [`GpuShape::kind`] of a quad.
@@ -68,8 +74,10 @@ pub struct GpuFrame {
     pub max_depth: u32,
     pub width: u32,
     pub height: u32,
-    pub shape_count: u32,
-    pub triangle_count: u32,
+    /// Planes: the first `plane_count` shapes.
+    pub plane_count: u32,
+    /// Leaves of the top level (0: it is empty and not traversed).
+    pub leaf_count: u32,
     pub light_count: u32,
     /// Workgroups along x.
     pub groups_x: u32,
@@ -83,6 +91,11 @@ pub struct GpuFrame {
     pub sample_base: u32,
     /// 1 in the temporal mode: sample 0 of each pixel records its geometry.
     pub temporal: u32,
+    /// Shapes in the shape buffer: the planes, then the frame's spheres and quads.
+    pub shape_count: u32,
+    pub pad0: u32,
+    pub pad1: u32,
+    pub pad2: u32,
 }
 
 /// An analytic shape (WGSL `Shape`), with what its intersection test needs precomputed
@@ -108,20 +121,53 @@ pub struct GpuShape {
     pub s1: f32,
 }
 
-/// A mesh triangle in world space (WGSL `Triangle`) with its normal
-/// normalize((v1 - v0) × (v2 - v0)). The buffer holds them in BVH leaf order; `id` is the
-/// triangle's index in scene order (all meshes' triangles in object order), which breaks
-/// ties between hits at the same t as the CPU reference does (lowest index wins).
+/// A mesh triangle (WGSL `Triangle`) in its bottom level's space with its normal
+/// normalize((v1 - v0) × (v2 - v0)). The buffer holds each mesh's triangles in its BVH's leaf
+/// order, one mesh after another; `id` is the triangle's index in its mesh, which breaks ties
+/// between hits at the same t as the CPU reference does (lowest index wins).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {
     pub v0: [f32; 3],
-    pub material: u32,
+    pub pad0: u32,
     pub v1: [f32; 3],
     pub id: u32,
     pub v2: [f32; 3],
     pub pad1: u32,
     pub normal: [f32; 3],
+    pub pad2: u32,
+}
+
+/// One leaf of the top level (WGSL `TopLeaf`), in its leaf order: a shape (`index` into the
+/// shape buffer) or, with [`TOP_INSTANCE`] set, an instance; `key` breaks ties between hits
+/// at the same t (lowest wins), as on the CPU.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTopLeaf {
+    pub index: u32,
+    pub key: u32,
+}
+
+/// A copy of a mesh (WGSL `Instance`): `to_mesh_*` are the rows (x, y, z, translation) of the
+/// map from the world to the mesh's space, `normal_*` the rows of the cofactor matrix that
+/// takes mesh normals to the world (`steadyray_render::two_level::Instance`); `baked` = 1
+/// when the mesh is in world space already (no transform). The mesh's nodes and triangles
+/// start at `node_base` and `tri_base` of their buffers.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuInstance {
+    pub to_mesh_x: [f32; 4],
+    pub to_mesh_y: [f32; 4],
+    pub to_mesh_z: [f32; 4],
+    pub normal_x: [f32; 3],
+    pub node_base: u32,
+    pub normal_y: [f32; 3],
+    pub tri_base: u32,
+    pub normal_z: [f32; 3],
+    pub material: u32,
+    pub baked: u32,
+    pub pad0: u32,
+    pub pad1: u32,
     pub pad2: u32,
 }
 
@@ -331,8 +377,8 @@ mod tests {
                     max_depth,
                     width,
                     height,
-                    shape_count,
-                    triangle_count,
+                    plane_count,
+                    leaf_count,
                     light_count,
                     groups_x,
                     counter_stride,
@@ -340,6 +386,10 @@ mod tests {
                     jitter,
                     sample_base,
                     temporal,
+                    shape_count,
+                    pad0,
+                    pad1,
+                    pad2,
                 }),
             ),
             (
@@ -359,7 +409,7 @@ mod tests {
                 "Triangle",
                 rust_layout!(GpuTriangle {
                     v0,
-                    material,
+                    pad0,
                     v1,
                     id,
                     v2,
@@ -379,6 +429,25 @@ mod tests {
                     max_z,
                     child,
                     pad
+                }),
+            ),
+            ("TopLeaf", rust_layout!(GpuTopLeaf { index, key })),
+            (
+                "Instance",
+                rust_layout!(GpuInstance {
+                    to_mesh_x,
+                    to_mesh_y,
+                    to_mesh_z,
+                    normal_x,
+                    node_base,
+                    normal_y,
+                    tri_base,
+                    normal_z,
+                    material,
+                    baked,
+                    pad0,
+                    pad1,
+                    pad2,
                 }),
             ),
             (
@@ -506,6 +575,8 @@ mod tests {
             ("BVH_EMPTY", BVH_EMPTY),
             ("CAST_TILE", CAST_TILE),
             ("CAST_MISS", CAST_MISS),
+            ("TOP_INSTANCE", TOP_INSTANCE),
+            ("NO_INSTANCE", NO_INSTANCE),
             ("SHAPE_SPHERE", SHAPE_SPHERE),
             ("SHAPE_QUAD", SHAPE_QUAD),
             ("SHAPE_PLANE", SHAPE_PLANE),

@@ -5,8 +5,8 @@ use crate::error::scoped;
 use steadyray_render::RenderError;
 
 /// The renderer's WGSL module: layouts and its bindings, sampling rules, eye rays, the
-/// triangle BVH queries, geometry, the temporal mode's geometry record, integrator, count
-/// reduction and tone map.
+/// triangle BVH queries, geometry, the two-level scene queries, the temporal mode's geometry
+/// record, integrator, count reduction and tone map.
 pub(crate) const SHADER_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
     include_str!("shaders/render_bindings.wgsl"),
@@ -14,6 +14,7 @@ pub(crate) const SHADER_SOURCE: &str = concat!(
     include_str!("shaders/camera.wgsl"),
     include_str!("shaders/traversal.wgsl"),
     include_str!("shaders/geometry.wgsl"),
+    include_str!("shaders/top_level.wgsl"),
     include_str!("shaders/temporal_record.wgsl"),
     include_str!("shaders/integrator.wgsl"),
     include_str!("shaders/counts.wgsl"),
@@ -51,6 +52,9 @@ pub(crate) mod binding {
     pub const SRGB8: u32 = 8;
     pub const BVH_NODES: u32 = 9;
     pub const GEOMETRY: u32 = 10;
+    pub const TOP_NODES: u32 = 11;
+    pub const TOP_LEAVES: u32 = 12;
+    pub const INSTANCES: u32 = 13;
 }
 
 /// The three entry points of [`SHADER_SOURCE`] over one bind group layout.
@@ -108,6 +112,9 @@ impl Pipelines {
                 layout_entry(SRGB8, write),
                 layout_entry(BVH_NODES, read),
                 layout_entry(GEOMETRY, write),
+                layout_entry(TOP_NODES, read),
+                layout_entry(TOP_LEAVES, read),
+                layout_entry(INSTANCES, read),
             ],
         });
         let module = shader_module(device, SHADER_SOURCE)?;

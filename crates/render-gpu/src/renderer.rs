@@ -6,11 +6,12 @@ use crate::device::GpuContext;
 use crate::error::{gpu_error, scoped};
 use crate::layout::{GpuFrame, WORKGROUP_SIZE};
 use crate::pipeline::{Pipelines, binding, buffer_entry};
-use crate::scene_buffers::{PackedScene, SceneBuffers};
+use crate::scene_buffers::{GpuWorld, PackedScene, SceneBuffers};
 use crate::temporal::TemporalPass;
 use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
 use std::time::Instant;
 use steadyray_render::temporal::sample_base;
+use steadyray_render::two_level::SceneLayout;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, RayCounts, RenderError, RenderSettings, Renderer,
     TemporalSettings, TimingSource, check_time,
@@ -19,13 +20,10 @@ use steadyray_scene::{Camera, Scene};
 
 pub(crate) mod display;
 
-/// What the shaders need of the loaded scene besides its buffers.
+/// The loaded scene: what is fixed, and its frame at the last time rendered.
 struct LoadedScene {
-    shape_count: u32,
-    triangle_count: u32,
-    light_count: u32,
-    ambient: f32,
-    background: [f32; 3],
+    packed: PackedScene,
+    world: GpuWorld,
 }
 
 /// The image the last frame left: its size, and whether it is the temporal history.
@@ -138,6 +136,9 @@ impl GpuRenderer {
                         buffer_entry(binding::SRGB8, f.srgb8.buffer()),
                         buffer_entry(binding::BVH_NODES, s.bvh_nodes.buffer()),
                         buffer_entry(binding::GEOMETRY, f.geometry.buffer()),
+                        buffer_entry(binding::TOP_NODES, s.top_nodes.buffer()),
+                        buffer_entry(binding::TOP_LEAVES, s.top_leaves.buffer()),
+                        buffer_entry(binding::INSTANCES, s.instances.buffer()),
                     ],
                 })
         });
@@ -249,25 +250,24 @@ impl Renderer for GpuRenderer {
     }
 
     fn load_scene(&mut self, scene: &Scene) -> Result<(), RenderError> {
-        let packed = PackedScene::new(scene)?;
+        self.scene = None;
+        let layout = SceneLayout::new(scene)?;
+        let packed = PackedScene::new(scene, &layout)?;
         let count = |n: usize, what: &str| {
             u32::try_from(n).map_err(|_| RenderError::Scene(format!("too many {what}: {n}")))
         };
-        let loaded = LoadedScene {
-            shape_count: count(packed.shapes.len(), "shapes")?,
-            triangle_count: count(packed.triangles.len(), "triangles")?,
-            light_count: count(packed.lights.len(), "lights")?,
-            ambient: packed.ambient,
-            background: packed.background,
-        };
+        count(packed.lights.len(), "lights")?;
+        count(packed.triangles.len(), "triangles")?;
+        let world = GpuWorld::new(scene, layout)?;
         let device = &self.ctx.device;
         let grew = scoped(device, "cannot upload the scene", || {
-            self.scene_buffers.upload(device, &self.ctx.queue, &packed)
+            self.scene_buffers
+                .upload_scene(device, &self.ctx.queue, &packed)
         })?;
         if grew {
             self.bind_group = None;
         }
-        self.scene = Some(loaded);
+        self.scene = Some(LoadedScene { packed, world });
         self.temporal.reset();
         Ok(())
     }
@@ -280,9 +280,30 @@ impl Renderer for GpuRenderer {
     ) -> Result<FrameStats, RenderError> {
         settings.validate()?;
         check_time(time_s)?;
-        let scene = self.scene.as_ref().ok_or(RenderError::NoScene)?;
+        let scene = self.scene.as_mut().ok_or(RenderError::NoScene)?;
         self.ctx.errors.check()?;
         let wall_start = Instant::now();
+        // The frame's objects and top level, placed and uploaded: part of Tp.
+        if scene.world.place(time_s, &scene.packed)? {
+            let device = &self.ctx.device;
+            let world = &scene.world;
+            let grew = scoped(device, "cannot upload the frame's objects", || {
+                self.scene_buffers
+                    .upload_frame(device, &self.ctx.queue, world)
+            })??;
+            if grew {
+                self.bind_group = None;
+            }
+        }
+        let accel_ms = wall_start.elapsed().as_secs_f64() * 1e3;
+        let count = |n: usize, what: &str| {
+            u32::try_from(n).map_err(|_| RenderError::Scene(format!("too many {what}: {n}")))
+        };
+        let plane_count = count(scene.packed.planes.len(), "planes")?;
+        let leaf_count = count(scene.world.top_leaves.len(), "objects")?;
+        let shape_count = count(scene.world.shapes.len(), "shapes")?;
+        let light_count = scene.packed.lights.len() as u32;
+        let (ambient, background) = (scene.packed.ambient, scene.packed.background);
         let (width, height) = (settings.width, settings.height);
         let groups_x = width.div_ceil(WORKGROUP_SIZE);
         let groups_y = height.div_ceil(WORKGROUP_SIZE);
@@ -309,20 +330,22 @@ impl Renderer for GpuRenderer {
             right: cam.right.to_array(),
             spp: settings.spp,
             true_up: cam.true_up.to_array(),
-            ambient: scene.ambient,
-            background: scene.background,
+            ambient,
+            background,
             max_depth: settings.max_depth,
             width,
             height,
-            shape_count: scene.shape_count,
-            triangle_count: scene.triangle_count,
-            light_count: scene.light_count,
+            plane_count,
+            leaf_count,
+            light_count,
             groups_x,
             counter_stride,
             group_count,
             jitter: step.map_or([0.0; 2], |s| s.jitter),
             sample_base: step.map_or(0, |s| sample_base(s.index)),
             temporal: u32::from(step.is_some()),
+            shape_count,
+            ..Default::default()
         };
         let shown = history_pixels.unwrap_or(settings.pixels());
         if self.frame_buffers.ensure(
@@ -394,8 +417,8 @@ impl Renderer for GpuRenderer {
             .as_ref()
             .and_then(|t| t.elapsed_ms(&stats[TOTALS_BYTES as usize..]));
         let (render_ms, timing) = match gpu_ms {
-            Some(ms) => (ms, TimingSource::GpuTimestamps),
-            None => (submit_and_wait_ms, TimingSource::WallClock),
+            Some(ms) => (accel_ms + ms, TimingSource::GpuTimestamps),
+            None => (accel_ms + submit_and_wait_ms, TimingSource::WallClock),
         };
         self.last_frame = Some(LastFrame {
             width: frame_width,
@@ -404,6 +427,7 @@ impl Renderer for GpuRenderer {
         });
         Ok(FrameStats {
             render_ms,
+            accel_ms,
             wall_ms: wall_start.elapsed().as_secs_f64() * 1e3,
             timing,
             samples: rays.per_depth[0],

@@ -1,19 +1,27 @@
-//! A scene in GPU layout ([`PackedScene`]) and the storage buffers that hold it.
+//! A scene in GPU layout: what is fixed per scene ([`PackedScene`]: materials, lights,
+//! planes, every mesh's triangles and bottom-level BVH), what changes per frame
+//! ([`GpuWorld`]: the frame's spheres and quads, instances and top level), and the storage
+//! buffers that hold them.
 
 use crate::buffers::GrowBuffer;
 use crate::layout::*;
 use glam::{Vec3, Vec3A};
+use steadyray_accel::{Bounds, BvhError, TopLayout, TopLevel};
 use steadyray_render::RenderError;
-use steadyray_scene::{Material, Scene, Shape};
+use steadyray_render::two_level::{Leaf, SceneLayout};
+use steadyray_scene::{Material, Scene};
 
-/// A scene flattened into the structs of [`crate::layout`]: spheres, quads and planes, each
-/// kind in object order, and every mesh's triangles in the leaf order of their BVH (each
-/// with its index in object order as `id`).
+/// The parts of a scene that stay the same from frame to frame.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct PackedScene {
-    pub(crate) shapes: Vec<GpuShape>,
+    /// The infinite planes, in object order: the first shapes of every frame.
+    pub(crate) planes: Vec<GpuShape>,
+    /// Every mesh's triangles in its BVH's leaf order, one mesh after another.
     pub(crate) triangles: Vec<GpuTriangle>,
+    /// Every mesh's 4-wide BVH, one after another (child indices within the mesh's own).
     pub(crate) bvh_nodes: Vec<GpuBvhNode>,
+    /// Per mesh, where its nodes and triangles start.
+    pub(crate) mesh_bases: Vec<(u32, u32)>,
     pub(crate) materials: Vec<GpuMaterial>,
     pub(crate) lights: Vec<GpuLight>,
     pub(crate) ambient: f32,
@@ -60,83 +68,53 @@ fn pack_material(material: &Material) -> Result<GpuMaterial, String> {
     Ok(packed)
 }
 
-/// An analytic shape in GPU layout, precomputed as the CPU reference does (glam `Vec3A`
-/// arithmetic, so the same f32 values); None for a mesh. Refuses what the CPU reference
-/// refuses: non-positive radii, quads with parallel edges, zero plane normals.
-fn pack_shape(shape: &Shape, material: u32) -> Result<Option<GpuShape>, &'static str> {
-    let packed = match *shape {
-        Shape::Sphere { center, radius } => {
-            if !(radius > 0.0 && radius.is_finite()) {
-                return Err("sphere radius must be positive");
-            }
-            GpuShape {
-                p0: center.to_array(),
-                kind: SHAPE_SPHERE,
-                material,
-                s0: radius * radius,
-                s1: 1.0 / radius,
-                ..Default::default()
-            }
-        }
-        Shape::Quad {
-            corner,
-            edge_u,
-            edge_v,
-        } => {
-            let (eu, ev) = (Vec3A::from(edge_u), Vec3A::from(edge_v));
-            let w = eu.cross(ev);
-            let w2 = w.length_squared();
-            if !(w2 > 0.0 && w2.is_finite()) {
-                return Err("quad edges are parallel");
-            }
-            GpuShape {
-                p0: corner.to_array(),
-                kind: SHAPE_QUAD,
-                p1: w.normalize().to_array(),
-                material,
-                p2: (ev.cross(w) / w2).to_array(),
-                s0: eu.length(),
-                p3: (w.cross(eu) / w2).to_array(),
-                s1: ev.length(),
-            }
-        }
-        Shape::Plane { point, normal } => {
-            if normal.length_squared() == 0.0 || !normal.is_finite() {
-                return Err("plane normal must be a non-zero vector");
-            }
-            let (a, b) = plane_axes(normal.into());
-            GpuShape {
-                p0: point.to_array(),
-                kind: SHAPE_PLANE,
-                p1: normal.to_array(),
-                material,
-                p2: a.to_array(),
-                p3: b.to_array(),
-                ..Default::default()
-            }
-        }
-        Shape::Mesh(_) => return Ok(None),
-    };
-    Ok(Some(packed))
+/// A sphere in GPU layout, precomputed as the CPU reference's `Sphere::new` does.
+fn pack_sphere(center: Vec3, radius: f32, material: u32) -> GpuShape {
+    GpuShape {
+        p0: center.to_array(),
+        kind: SHAPE_SPHERE,
+        material,
+        s0: radius * radius,
+        s1: 1.0 / radius,
+        ..Default::default()
+    }
 }
 
-/// A mesh triangle in GPU layout, None when it has no area (it can never be hit).
-fn pack_triangle(v: [Vec3; 3], material: u32) -> Option<GpuTriangle> {
-    let n = (v[1] - v[0]).cross(v[2] - v[0]);
-    let len2 = n.length_squared();
-    (len2 > 0.0 && len2.is_finite()).then(|| GpuTriangle {
-        v0: v[0].to_array(),
+/// A quad in GPU layout, precomputed as the CPU reference's `Quad::new` does (glam `Vec3A`
+/// arithmetic, so the same f32 values). The layout gives only quads with area.
+fn pack_quad(corner: Vec3, edge_u: Vec3, edge_v: Vec3, material: u32) -> GpuShape {
+    let (eu, ev) = (Vec3A::from(edge_u), Vec3A::from(edge_v));
+    let w = eu.cross(ev);
+    let w2 = w.length_squared();
+    GpuShape {
+        p0: corner.to_array(),
+        kind: SHAPE_QUAD,
+        p1: w.normalize().to_array(),
         material,
-        v1: v[1].to_array(),
-        v2: v[2].to_array(),
-        normal: n.normalize().to_array(),
+        p2: (ev.cross(w) / w2).to_array(),
+        s0: eu.length(),
+        p3: (w.cross(eu) / w2).to_array(),
+        s1: ev.length(),
+    }
+}
+
+/// A plane in GPU layout, with its checker axes as the CPU reference computes them.
+fn pack_plane(point: Vec3, normal: Vec3, material: u32) -> GpuShape {
+    let (a, b) = plane_axes(normal.into());
+    GpuShape {
+        p0: point.to_array(),
+        kind: SHAPE_PLANE,
+        p1: normal.to_array(),
+        material,
+        p2: a.to_array(),
+        p3: b.to_array(),
         ..Default::default()
-    })
+    }
 }
 
 impl PackedScene {
-    /// Flattens `scene`, checking the indices the shaders will follow.
-    pub(crate) fn new(scene: &Scene) -> Result<Self, RenderError> {
+    /// Packs what `layout` (of `scene`) keeps for every frame, building each mesh's BVH.
+    pub(crate) fn new(scene: &Scene, layout: &SceneLayout) -> Result<Self, RenderError> {
         let bad = |what: String| RenderError::Scene(format!("scene {:?}: {what}", scene.name));
         let materials = scene
             .materials
@@ -156,77 +134,163 @@ impl PackedScene {
                     ..Default::default()
                 })
                 .collect(),
+            planes: layout
+                .planes
+                .iter()
+                .map(|p| pack_plane(p.point, p.normal, p.material))
+                .collect(),
             ..Default::default()
         };
-        for object in &scene.objects {
-            if object.material >= packed.materials.len() {
-                return Err(bad(format!(
-                    "object {:?} refers to material {} of {}",
-                    object.name,
-                    object.material,
-                    packed.materials.len()
-                )));
-            }
-            let material = object.material as u32;
-            let shape = pack_shape(&object.shape, material)
-                .map_err(|why| bad(format!("object {:?}: {why}", object.name)))?;
-            packed.shapes.extend(shape);
-            let Shape::Mesh(mesh) = &object.shape else {
-                continue;
-            };
-            for (i, &[a, b, c]) in mesh.triangles.iter().enumerate() {
-                if [a, b, c]
-                    .iter()
-                    .any(|&v| v as usize >= mesh.positions.len())
-                {
-                    return Err(bad(format!(
-                        "mesh {:?} triangle {i} refers to a missing vertex",
-                        object.name
-                    )));
-                }
-                packed
-                    .triangles
-                    .extend(pack_triangle(mesh.triangle(i), material));
-            }
+        for mesh in &layout.meshes {
+            packed
+                .add_mesh(&mesh.corners, &mesh.normals)
+                .map_err(|e| bad(format!("meshes: {e}")))?;
         }
-        // Closest-hit ties go to the first primitive tested: test spheres, quads, planes in
-        // that order, as the CPU reference does.
-        packed.shapes.sort_by_key(|s| s.kind);
-        packed
-            .order_triangles_for_bvh()
-            .map_err(|e| bad(format!("meshes: {e}")))?;
         Ok(packed)
     }
 
-    /// Builds the BVH over the triangles (in object order), numbers them by that order and
-    /// puts them in the BVH's leaf order.
-    fn order_triangles_for_bvh(&mut self) -> Result<(), steadyray_accel::BvhError> {
-        let corners: Vec<[Vec3; 3]> = self
-            .triangles
-            .iter()
-            .map(|t| [t.v0, t.v1, t.v2].map(Vec3::from))
-            .collect();
-        let bvh = steadyray_accel::Bvh::build(&corners)?;
-        self.triangles = bvh
-            .leaf_order()
-            .iter()
-            .map(|&i| GpuTriangle {
+    /// Builds the BVH over one mesh's triangles and appends its nodes and its triangles (in
+    /// the BVH's leaf order, each with its index in the mesh as `id`).
+    fn add_mesh(&mut self, corners: &[[Vec3; 3]], normals: &[Vec3]) -> Result<(), BvhError> {
+        let count = |n: usize| u32::try_from(n).map_err(|_| BvhError::TooManyTriangles(n));
+        self.mesh_bases
+            .push((count(self.bvh_nodes.len())?, count(self.triangles.len())?));
+        let bvh = steadyray_accel::Bvh::build(corners)?;
+        self.triangles.extend(bvh.leaf_order().iter().map(|&i| {
+            let [v0, v1, v2] = corners[i as usize].map(|v| v.to_array());
+            GpuTriangle {
+                v0,
+                v1,
+                v2,
                 id: i,
-                ..self.triangles[i as usize]
-            })
-            .collect();
-        self.bvh_nodes = bvh.gpu_nodes()?.to_vec();
+                normal: normals[i as usize].to_array(),
+                ..Default::default()
+            }
+        }));
+        self.bvh_nodes.extend_from_slice(bvh.gpu_nodes()?);
         Ok(())
     }
 }
 
-/// The storage buffers of the loaded scene, reused (and only grown) across scenes.
+/// The per-frame part of a loaded scene: its layout, its frame in GPU layout and the
+/// top level they came from.
+pub(crate) struct GpuWorld {
+    scene: Scene,
+    layout: SceneLayout,
+    top: TopLevel,
+    /// The time the frame was placed at; `None` before the first placement.
+    time_s: Option<f64>,
+    leaves: Vec<Leaf>,
+    boxes: Vec<Bounds>,
+    /// The planes, then the frame's spheres and quads.
+    pub(crate) shapes: Vec<GpuShape>,
+    /// The frame's leaves in the top level's leaf order.
+    pub(crate) top_leaves: Vec<GpuTopLeaf>,
+    pub(crate) instances: Vec<GpuInstance>,
+}
+
+impl GpuWorld {
+    /// The world of `scene`, not yet placed at any time.
+    pub(crate) fn new(scene: &Scene, layout: SceneLayout) -> Result<Self, RenderError> {
+        Ok(Self {
+            scene: scene.clone(),
+            layout,
+            top: TopLevel::build(&[], TopLayout::Gpu).map_err(top_error)?,
+            time_s: None,
+            leaves: Vec::new(),
+            boxes: Vec::new(),
+            shapes: Vec::new(),
+            top_leaves: Vec::new(),
+            instances: Vec::new(),
+        })
+    }
+
+    /// The top level's nodes.
+    pub(crate) fn top_nodes(&self) -> Result<&[GpuBvhNode], RenderError> {
+        self.top.gpu_nodes().map_err(top_error)
+    }
+
+    /// Places the frame at `time_s`: its shapes, instances and top level (refitted or
+    /// rebuilt). Returns whether anything changed (a scene where nothing moves is placed
+    /// once). `packed` gives the meshes' positions in the buffers.
+    pub(crate) fn place(&mut self, time_s: f64, packed: &PackedScene) -> Result<bool, RenderError> {
+        if self.time_s.is_some() && !self.layout.animated {
+            return Ok(false);
+        }
+        self.layout
+            .leaves_at(&self.scene, time_s, &mut self.leaves, &mut self.boxes);
+        self.top.update(&self.boxes).map_err(top_error)?;
+        self.shapes.clear();
+        self.shapes.extend_from_slice(&packed.planes);
+        self.instances.clear();
+        // Each leaf as a shape or instance, by its index (its key).
+        let mut index = Vec::with_capacity(self.leaves.len());
+        for leaf in &self.leaves {
+            index.push(match *leaf {
+                Leaf::Sphere {
+                    center,
+                    radius,
+                    material,
+                } => {
+                    self.shapes.push(pack_sphere(center, radius, material));
+                    self.shapes.len() as u32 - 1
+                }
+                Leaf::Quad {
+                    corner,
+                    edge_u,
+                    edge_v,
+                    material,
+                } => {
+                    self.shapes
+                        .push(pack_quad(corner, edge_u, edge_v, material));
+                    self.shapes.len() as u32 - 1
+                }
+                Leaf::Instance(inst) => {
+                    let (node_base, tri_base) = packed.mesh_bases[inst.mesh as usize];
+                    let rows = inst.to_mesh.unwrap_or_default();
+                    let [nx, ny, nz] = inst.normal_rows;
+                    self.instances.push(GpuInstance {
+                        to_mesh_x: rows[0],
+                        to_mesh_y: rows[1],
+                        to_mesh_z: rows[2],
+                        normal_x: nx,
+                        node_base,
+                        normal_y: ny,
+                        tri_base,
+                        normal_z: nz,
+                        material: inst.material,
+                        baked: u32::from(inst.to_mesh.is_none()),
+                        ..Default::default()
+                    });
+                    TOP_INSTANCE | (self.instances.len() as u32 - 1)
+                }
+            });
+        }
+        self.top_leaves.clear();
+        self.top_leaves
+            .extend(self.top.leaf_order().iter().map(|&key| GpuTopLeaf {
+                index: index[key as usize],
+                key,
+            }));
+        self.time_s = Some(time_s);
+        Ok(true)
+    }
+}
+
+fn top_error(e: BvhError) -> RenderError {
+    RenderError::Scene(format!("top-level BVH: {e}"))
+}
+
+/// The storage buffers of the loaded scene and its frame, reused (and only grown).
 pub(crate) struct SceneBuffers {
     pub(crate) shapes: GrowBuffer,
     pub(crate) triangles: GrowBuffer,
     pub(crate) bvh_nodes: GrowBuffer,
     pub(crate) materials: GrowBuffer,
     pub(crate) lights: GrowBuffer,
+    pub(crate) top_nodes: GrowBuffer,
+    pub(crate) top_leaves: GrowBuffer,
+    pub(crate) instances: GrowBuffer,
 }
 
 impl SceneBuffers {
@@ -239,19 +303,21 @@ impl SceneBuffers {
             bvh_nodes: buffer("bvh nodes"),
             materials: buffer("materials"),
             lights: buffer("lights"),
+            top_nodes: buffer("top-level nodes"),
+            top_leaves: buffer("top-level leaves"),
+            instances: buffer("instances"),
         }
     }
 
-    /// Uploads `scene`; returns whether any buffer was replaced.
-    pub(crate) fn upload(
+    /// Uploads what stays the same over the scene's frames; returns whether any buffer was
+    /// replaced.
+    pub(crate) fn upload_scene(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &PackedScene,
     ) -> bool {
         let grew = [
-            self.shapes
-                .write(device, queue, bytemuck::cast_slice(&scene.shapes)),
             self.triangles
                 .write(device, queue, bytemuck::cast_slice(&scene.triangles)),
             self.bvh_nodes
@@ -263,12 +329,35 @@ impl SceneBuffers {
         ];
         grew.contains(&true)
     }
+
+    /// Uploads the frame's shapes, instances and top level; returns whether any buffer was
+    /// replaced.
+    pub(crate) fn upload_frame(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        world: &GpuWorld,
+    ) -> Result<bool, RenderError> {
+        let grew = [
+            self.shapes
+                .write(device, queue, bytemuck::cast_slice(&world.shapes)),
+            self.top_nodes
+                .write(device, queue, bytemuck::cast_slice(world.top_nodes()?)),
+            self.top_leaves
+                .write(device, queue, bytemuck::cast_slice(&world.top_leaves)),
+            self.instances
+                .write(device, queue, bytemuck::cast_slice(&world.instances)),
+        ];
+        Ok(grew.contains(&true))
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use steadyray_scene::{Camera, CameraPath, Checker, Object, PointLight, TriangleMesh};
+    use steadyray_scene::{
+        Camera, CameraPath, Checker, Object, PointLight, Shape, Transform, TriangleMesh,
+    };
 
     fn scene(objects: Vec<Object>) -> Scene {
         Scene {
@@ -300,8 +389,17 @@ mod tests {
             ambient: 0.05,
             background: Vec3::new(0.05, 0.07, 0.12),
             camera: Camera::yaw_pitch(Vec3::new(0.0, 1.5, 0.0), 0.0, 0.0, 60.0),
-            path: CameraPath::Sweep { frames: 1 },
+            path: CameraPath::sweep(1),
         }
+    }
+
+    /// The scene packed and placed at time 0.
+    fn packed(scene: &Scene) -> Result<(PackedScene, GpuWorld), RenderError> {
+        let layout = SceneLayout::new(scene)?;
+        let packed = PackedScene::new(scene, &layout)?;
+        let mut world = GpuWorld::new(scene, layout)?;
+        world.place(0.0, &packed)?;
+        Ok((packed, world))
     }
 
     #[test]
@@ -310,11 +408,12 @@ mod tests {
             positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
             triangles: vec![[0, 1, 2]],
         };
-        let packed = PackedScene::new(&scene(vec![
+        let (packed, world) = packed(&scene(vec![
             Object {
                 name: "tri".into(),
-                shape: Shape::Mesh(mesh),
+                shape: Shape::mesh(mesh, Transform::IDENTITY),
                 material: 1,
+                motion: None,
             },
             Object {
                 name: "floor".into(),
@@ -324,11 +423,12 @@ mod tests {
                     edge_v: Vec3::new(0.0, 0.0, -10.0),
                 },
                 material: 0,
+                motion: None,
             },
         ]))
         .unwrap();
-        assert_eq!(packed.shapes.len(), 1);
-        let quad = packed.shapes[0];
+        assert_eq!(world.shapes.len(), 1);
+        let quad = world.shapes[0];
         assert_eq!(
             (quad.kind, quad.material, quad.s0, quad.s1),
             (SHAPE_QUAD, 0, 4.0, 10.0)
@@ -345,22 +445,40 @@ mod tests {
         );
         assert_eq!(packed.triangles.len(), 1);
         assert_eq!(packed.triangles[0].normal, [0.0, 0.0, 1.0]);
+        // The mesh is the first leaf (key 0), the quad the second.
+        assert_eq!(world.instances.len(), 1);
+        assert_eq!(world.instances[0].material, 1);
+        assert_eq!(world.instances[0].baked, 1);
+        let mut leaves = world.top_leaves.clone();
+        leaves.sort_by_key(|l| l.key);
+        assert_eq!(
+            leaves,
+            [
+                GpuTopLeaf {
+                    index: TOP_INSTANCE,
+                    key: 0
+                },
+                GpuTopLeaf { index: 0, key: 1 }
+            ]
+        );
         assert_eq!(packed.materials[0].checker_size, 0.5);
         assert_eq!(packed.materials[1].kind, MAT_DIELECTRIC);
     }
 
     #[test]
     fn rejects_bad_material_index() {
-        let err = PackedScene::new(&scene(vec![Object {
+        let err = packed(&scene(vec![Object {
             name: "ball".into(),
             shape: Shape::Sphere {
                 center: Vec3::ZERO,
                 radius: 1.0,
             },
             material: 7,
+            motion: None,
         }]))
-        .unwrap_err();
-        assert!(err.to_string().contains("material 7"), "{err}");
+        .err()
+        .unwrap();
+        assert!(err.to_string().contains("material index"), "{err}");
     }
 
     #[test]

@@ -8,33 +8,46 @@ use common::{assert_counts, compare, gpu};
 use std::f32::consts::PI;
 use steadyray_render::{RenderSettings, Renderer};
 use steadyray_render_cpu::CpuRenderer;
-use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
+use steadyray_scene::Transform;
+use steadyray_scene::mesh_import::import_mesh;
 use steadyray_scene::{
-    Camera, CameraPath, Checker, Material, Object, PointLight, Scene, Shape, TriangleMesh, Vec3,
-    builtin,
+    Camera, CameraPath, Checker, Material, Motion, MotionKey, Object, PointLight, Scene, Shape,
+    TriangleMesh, Vec3, builtin,
 };
 
 /// Renders `scene` from `camera` on both backends at each (S, R) and checks parity;
 /// returns a line per setting for the log.
 fn check_parity(name: &str, scene: &Scene, camera: &Camera, size: (u32, u32), sr: &[(f32, u32)]) {
+    check_parity_at(name, scene, camera, &[0.0], size, sr);
+}
+
+/// As [`check_parity`], at each of the scene times `times` (seconds).
+fn check_parity_at(
+    name: &str,
+    scene: &Scene,
+    camera: &Camera,
+    times: &[f64],
+    size: (u32, u32),
+    sr: &[(f32, u32)],
+) {
     let Some(mut gpu) = gpu() else {
         return;
     };
     let mut cpu = CpuRenderer::new();
     gpu.load_scene(scene).unwrap();
     cpu.load_scene(scene).unwrap();
-    for &(spp, max_depth) in sr {
+    for (&time, &(spp, max_depth)) in times.iter().flat_map(|t| std::iter::repeat(t).zip(sr)) {
         let settings = RenderSettings {
             width: size.0,
             height: size.1,
             spp,
             max_depth,
         };
-        let g = gpu.render(camera, 0.0, &settings).unwrap();
-        let c = cpu.render(camera, 0.0, &settings).unwrap();
+        let g = gpu.render(camera, time, &settings).unwrap();
+        let c = cpu.render(camera, time, &settings).unwrap();
         let diff = compare(&gpu.read_image().unwrap(), &cpu.read_image().unwrap());
         eprintln!(
-            "{name} {}x{} S={spp} R={max_depth}: max {} mean {:.4} over2 {} ({:.3}%) \
+            "{name} t={time} {}x{} S={spp} R={max_depth}: max {} mean {:.4} over2 {} ({:.3}%) \
              linear {:e}; \
              rays gpu {:?} shadow {} / cpu {:?} shadow {}; gpu {:.1} ms ({:?})",
             size.0,
@@ -51,7 +64,7 @@ fn check_parity(name: &str, scene: &Scene, camera: &Camera, size: (u32, u32), sr
             g.render_ms,
             g.timing,
         );
-        let what = format!("{name} S={spp} R={max_depth}");
+        let what = format!("{name} t={time} S={spp} R={max_depth}");
         let exact = gpu.adapter().is_software;
         diff.assert_parity(&what, exact);
         assert_counts(&g.rays, &c.rays, exact, scene.lights.len(), &what);
@@ -209,16 +222,25 @@ fn mesh_scene(extra: Vec<Object>) -> Scene {
                 normal: Vec3::Y,
             },
             material: 0,
+            motion: None,
         },
         Object {
             name: "glass ball".into(),
-            shape: Shape::Mesh(icosphere(Vec3::new(-0.6, 0.7, -4.0), 0.7)),
+            shape: Shape::mesh(
+                icosphere(Vec3::new(-0.6, 0.7, -4.0), 0.7),
+                Transform::IDENTITY,
+            ),
             material: 1,
+            motion: None,
         },
         Object {
             name: "block".into(),
-            shape: Shape::Mesh(cuboid(Vec3::new(0.4, 0.0, -5.0), Vec3::new(1.4, 1.2, -4.2))),
+            shape: Shape::mesh(
+                cuboid(Vec3::new(0.4, 0.0, -5.0), Vec3::new(1.4, 1.2, -4.2)),
+                Transform::IDENTITY,
+            ),
             material: 2,
+            motion: None,
         },
         Object {
             name: "lamp".into(),
@@ -227,6 +249,7 @@ fn mesh_scene(extra: Vec<Object>) -> Scene {
                 radius: 0.3,
             },
             material: 3,
+            motion: None,
         },
         Object {
             name: "mirror".into(),
@@ -236,6 +259,7 @@ fn mesh_scene(extra: Vec<Object>) -> Scene {
                 edge_v: Vec3::new(0.0, 3.0, 0.0),
             },
             material: 4,
+            motion: None,
         },
     ];
     objects.extend(extra);
@@ -301,7 +325,7 @@ fn mesh_scene(extra: Vec<Object>) -> Scene {
             Vec3::Y,
             55.0,
         ),
-        path: CameraPath::Sweep { frames: 1 },
+        path: CameraPath::sweep(1),
     }
 }
 
@@ -311,6 +335,142 @@ fn triangle_meshes() {
     check_parity("meshes", &scene, &scene.camera, (96, 64), &SETTINGS);
     let side = Camera::yaw_pitch(Vec3::new(1.5, 1.0, -1.5), PI / 8.0, -0.2, 60.0);
     check_parity("meshes side", &scene, &side, (96, 64), &[(1.0, 6)]);
+}
+
+/// A key of `[shapes.motion]` in tests.
+fn key(t: f64, translate: [f32; 3], rotate_y_deg: f32, scale: f32) -> MotionKey {
+    MotionKey {
+        t,
+        translate: Some(Vec3::from(translate)),
+        rotate_y_deg: Some(rotate_y_deg),
+        scale: Some(Vec3::splat(scale)),
+    }
+}
+
+/// Moving spheres and quads, a mesh in several copies (turned, stretched, mirrored) that
+/// moves and spins, a swarm that appears, and two quads in one plane (a tie at every hit,
+/// which the lower key takes): the same pictures and counts on both backends at several
+/// scene times.
+#[test]
+fn moving_world() {
+    let moving = |name: &str, shape: Shape, material: usize, motion: Motion| Object {
+        motion: Some(motion),
+        ..Object::fixed(name, shape, material)
+    };
+    let glass = icosphere(Vec3::ZERO, 0.4);
+    let swarm_copies: Vec<Transform> = (0..12)
+        .map(|i| Transform {
+            translate: Vec3::new((i % 4) as f32 * 0.5 - 0.75, 0.0, (i / 4) as f32 * -0.5),
+            rotate_y_deg: i as f32 * 25.0,
+            scale: Vec3::splat(0.3 + 0.02 * i as f32),
+        })
+        .collect();
+    let scene = mesh_scene(vec![
+        moving(
+            "flying mirror ball",
+            Shape::Sphere {
+                center: Vec3::new(-1.0, 1.2, -3.5),
+                radius: 0.3,
+            },
+            4,
+            Motion {
+                keys: vec![
+                    key(0.0, [0.0, 0.0, 0.0], 0.0, 1.0),
+                    key(1.0, [2.0, 0.3, -1.0], 0.0, 1.5),
+                    key(2.0, [0.0, 0.0, 0.0], 0.0, 1.0),
+                ],
+                looped: true,
+                ..Default::default()
+            },
+        ),
+        moving(
+            "turning pane",
+            Shape::Quad {
+                corner: Vec3::new(0.5, 0.2, -3.0),
+                edge_u: Vec3::new(0.8, 0.0, 0.0),
+                edge_v: Vec3::new(0.0, 0.9, 0.0),
+            },
+            1,
+            Motion {
+                spin_deg_per_s: 70.0,
+                ..Default::default()
+            },
+        ),
+        moving(
+            "glass copies",
+            Shape::Mesh {
+                mesh: glass.clone(),
+                placement: Transform {
+                    translate: Vec3::new(0.0, 0.5, -3.6),
+                    ..Transform::IDENTITY
+                },
+                instances: vec![
+                    Transform::IDENTITY,
+                    Transform {
+                        translate: Vec3::new(-1.1, 0.2, -0.4),
+                        rotate_y_deg: 40.0,
+                        scale: Vec3::new(1.5, 0.7, 1.0),
+                    },
+                    Transform {
+                        translate: Vec3::new(1.0, 0.1, 0.2),
+                        rotate_y_deg: -15.0,
+                        scale: Vec3::new(-1.0, 1.2, 1.0),
+                    },
+                ],
+            },
+            1,
+            Motion {
+                keys: vec![
+                    key(0.0, [0.0, 0.0, 0.0], 0.0, 1.0),
+                    key(1.5, [0.3, 0.2, 0.4], 30.0, 0.8),
+                ],
+                spin_deg_per_s: 20.0,
+                ..Default::default()
+            },
+        ),
+        moving(
+            "swarm",
+            Shape::Mesh {
+                mesh: cuboid(Vec3::splat(-0.3), Vec3::splat(0.3)),
+                placement: Transform {
+                    translate: Vec3::new(0.2, 1.6, -4.6),
+                    ..Transform::IDENTITY
+                },
+                instances: swarm_copies,
+            },
+            2,
+            Motion {
+                visible: Some(vec![[0.5, 5.0]]),
+                ..Default::default()
+            },
+        ),
+        Object::fixed(
+            "tile a",
+            Shape::Quad {
+                corner: Vec3::new(-2.0, 0.001, -3.0),
+                edge_u: Vec3::new(1.0, 0.0, 0.0),
+                edge_v: Vec3::new(0.0, 0.0, 1.0),
+            },
+            3,
+        ),
+        Object::fixed(
+            "tile b",
+            Shape::Quad {
+                corner: Vec3::new(-2.0, 0.001, -3.0),
+                edge_u: Vec3::new(1.0, 0.0, 0.0),
+                edge_v: Vec3::new(0.0, 0.0, 1.0),
+            },
+            2,
+        ),
+    ]);
+    check_parity_at(
+        "moving world",
+        &scene,
+        &scene.camera,
+        &[0.0, 0.7, 1.3],
+        (96, 64),
+        &[(1.0, 4), (2.5, 6)],
+    );
 }
 
 #[test]
@@ -323,7 +483,7 @@ fn teapot() {
         eprintln!("SKIPPED: {path} not found");
         return;
     }
-    let transform = MeshTransform {
+    let transform = Transform {
         translate: Vec3::new(0.3, 0.0, -4.5),
         scale: Vec3::splat(0.5),
         rotate_y_deg: 30.0,
@@ -331,8 +491,9 @@ fn teapot() {
     let teapot = import_mesh(path.as_ref(), &transform).unwrap().mesh;
     let scene = mesh_scene(vec![Object {
         name: "teapot".into(),
-        shape: Shape::Mesh(teapot),
+        shape: Shape::mesh(teapot, Transform::IDENTITY),
         material: 4,
+        motion: None,
     }]);
     check_parity("teapot", &scene, &scene.camera, (64, 48), &[(1.0, 2)]);
 }
@@ -355,7 +516,7 @@ fn bunny_in_the_cornell_box() {
         .iter()
         .position(|(name, _)| name == "white")
         .unwrap();
-    let transform = MeshTransform {
+    let transform = Transform {
         translate: Vec3::new(0.1, -0.2, 0.2),
         scale: Vec3::splat(6.0),
         rotate_y_deg: 20.0,
@@ -363,8 +524,9 @@ fn bunny_in_the_cornell_box() {
     let bunny = import_mesh(path.as_ref(), &transform).unwrap().mesh;
     scene.objects.push(Object {
         name: "bunny".into(),
-        shape: Shape::Mesh(bunny),
+        shape: Shape::mesh(bunny, Transform::IDENTITY),
         material: white,
+        motion: None,
     });
     check_parity(
         "bunny in the Cornell box",

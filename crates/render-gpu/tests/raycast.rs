@@ -15,8 +15,9 @@ use steadyray_render::sampling::{pcg_hash, unit_from_hash};
 use steadyray_render_gpu::layout::GpuCastRay;
 use steadyray_render_gpu::{CastOutcome, GpuOptions, GpuRayCaster};
 use steadyray_scene::Camera;
+use steadyray_scene::Transform;
 use steadyray_scene::camera::CameraFrame;
-use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
+use steadyray_scene::mesh_import::import_mesh;
 
 /// The bunny's triangles (input order) and their BVH.
 fn bunny() -> &'static (Vec<[Vec3; 3]>, Bvh) {
@@ -24,7 +25,7 @@ fn bunny() -> &'static (Vec<[Vec3; 3]>, Bvh) {
     BUNNY.get_or_init(|| {
         let path =
             Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/stanford-bunny.obj");
-        let mesh = import_mesh(&path, &MeshTransform::default()).unwrap().mesh;
+        let mesh = import_mesh(&path, &Transform::default()).unwrap().mesh;
         let corners: Vec<[Vec3; 3]> = (0..mesh.triangles.len())
             .map(|i| mesh.triangle(i))
             .collect();

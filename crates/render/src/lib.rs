@@ -2,7 +2,8 @@
 //! frame, what a frame reports, the linear image, and the rules both backends must follow
 //! bit for bit (sample pattern, fractional-S dither, branch random numbers, tone map, and the
 //! temporal mode's jitter, landing and reprojection rules). `docs/shading.md` and
-//! `docs/temporal.md` are the prose version of the same contract.
+//! `docs/temporal.md` are the prose version of the same contract. [`two_level`] lays a
+//! scene out for the two-level BVH the same way for both.
 
 pub mod image;
 pub mod renderer;
@@ -11,6 +12,7 @@ pub mod settings;
 pub mod stats;
 pub mod temporal;
 pub mod tonemap;
+pub mod two_level;
 
 pub use image::Image;
 pub use renderer::{BackendInfo, RenderError, Renderer, check_time};

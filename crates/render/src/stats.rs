@@ -48,8 +48,11 @@ pub enum TimingSource {
 /// The measurements of one rendered frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrameStats {
-    /// Tp: the image-generation time, in milliseconds.
+    /// Tp: the image-generation time, in milliseconds, including `accel_ms`.
     pub render_ms: f64,
+    /// The part of Tp spent placing the frame's objects and updating the top-level BVH
+    /// (and, on the GPU, uploading it), ms; about 0 for a scene where nothing moves.
+    pub accel_ms: f64,
     /// Host wall-clock time of the whole `render` call (submit and wait included), ms.
     pub wall_ms: f64,
     pub timing: TimingSource,

@@ -16,7 +16,7 @@ pub struct BuiltinScene {
     pub toml: &'static str,
 }
 
-const BUILTINS: [BuiltinScene; 3] = [
+const BUILTINS: [BuiltinScene; 4] = [
     BuiltinScene {
         name: "corridor",
         description: "the paper's benchmark: a mirror-lined corridor with coloured, glass and \
@@ -35,9 +35,21 @@ const BUILTINS: [BuiltinScene; 3] = [
                       under four lights, camera orbiting",
         toml: include_str!("../builtin/spheres.toml"),
     },
+    BuiltinScene {
+        name: "flyby",
+        description: "a moving world: objects flying between two mirror walls, a swarm of 200 \
+                      appearing at 4 s and gone at 8 s, a glass ball passing the camera, \
+                      camera flying a closed keyed path (12 s)",
+        toml: include_str!("../builtin/flyby.toml"),
+    },
 ];
 
-const NAMES: [&str; 3] = [BUILTINS[0].name, BUILTINS[1].name, BUILTINS[2].name];
+const NAMES: [&str; 4] = [
+    BUILTINS[0].name,
+    BUILTINS[1].name,
+    BUILTINS[2].name,
+    BUILTINS[3].name,
+];
 
 /// The names of the built-in scenes, default first.
 pub fn builtin_names() -> &'static [&'static str] {

@@ -2,9 +2,13 @@
 //! that turn it into a valid [`Scene`] or a [`SceneError`] naming the file, the line and the
 //! problem. Nothing here panics on any input.
 
+use crate::Transform;
 use crate::error::{SceneError, SceneErrorKind, line_of};
-use crate::mesh_import::{self, MeshTransform};
-use crate::{Camera, CameraPath, Checker, Material, Object, PointLight, Scene, Shape};
+use crate::mesh_import;
+use crate::{
+    Camera, CameraKey, CameraPath, Checker, KeyLook, KeyedPath, Material, Motion, MotionKey,
+    Object, PathMotion, PointLight, Scene, Shape,
+};
 use glam::Vec3;
 use serde::Deserialize;
 use std::collections::HashMap;
@@ -119,9 +123,52 @@ struct RawPath {
     #[serde(rename = "type")]
     kind: Spanned<String>,
     frames: Option<Spanned<u32>>,
+    duration_s: Option<Spanned<f64>>,
     center: Option<Spanned<V3>>,
     radius: Option<Spanned<f32>>,
     height: Option<Spanned<f32>>,
+    #[serde(rename = "loop")]
+    looped: Option<Spanned<bool>>,
+    keys: Option<Spanned<Vec<Spanned<RawCameraKey>>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCameraKey {
+    t: Spanned<f64>,
+    eye: Spanned<V3>,
+    target: Option<Spanned<V3>>,
+    yaw_deg: Option<Spanned<f32>>,
+    pitch_deg: Option<Spanned<f32>>,
+    vfov_deg: Option<Spanned<f32>>,
+}
+
+/// A mesh instance's transform.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTransform {
+    translate: Option<Spanned<V3>>,
+    rotate_y_deg: Option<Spanned<f32>>,
+    scale: Option<Spanned<Triple>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMotion {
+    keys: Option<Spanned<Vec<Spanned<RawMotionKey>>>>,
+    #[serde(rename = "loop")]
+    looped: Option<Spanned<bool>>,
+    spin_deg_per_s: Option<Spanned<f32>>,
+    visible: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMotionKey {
+    t: Spanned<f64>,
+    translate: Option<Spanned<V3>>,
+    rotate_y_deg: Option<Spanned<f32>>,
+    scale: Option<Spanned<Triple>>,
 }
 
 #[derive(Deserialize)]
@@ -165,6 +212,8 @@ struct RawShape {
     translate: Option<Spanned<V3>>,
     scale: Option<Spanned<Triple>>,
     rotate_y_deg: Option<Spanned<f32>>,
+    instances: Option<Spanned<Vec<Spanned<RawTransform>>>>,
+    motion: Option<Spanned<RawMotion>>,
 }
 
 #[derive(Deserialize)]
@@ -201,7 +250,8 @@ impl RawShape {
             triangles,
             translate,
             scale,
-            rotate_y_deg
+            rotate_y_deg,
+            instances
         )
     }
 }
@@ -242,9 +292,7 @@ impl Cx<'_> {
         let camera = self.camera(&raw.camera)?;
         let path = match &raw.path {
             Some(p) => self.path(p)?,
-            None => CameraPath::Sweep {
-                frames: DEFAULT_FRAMES,
-            },
+            None => CameraPath::sweep(DEFAULT_FRAMES),
         };
 
         let mut materials = Vec::with_capacity(raw.materials.len());
@@ -281,6 +329,10 @@ impl Cx<'_> {
                     ));
                 }
                 let (file_materials, parts) = self.gltf_parts(s, name)?;
+                let label = format!("shape {name:?}");
+                let placement = self.mesh_transform(r, &label)?;
+                let instances = self.instances(r, &label)?;
+                let motion = self.shape_motion(r, name)?;
                 let mut made: HashMap<usize, usize> = HashMap::new();
                 let several = parts.len() > 1;
                 for (mesh, m) in parts {
@@ -326,8 +378,13 @@ impl Cx<'_> {
                     }
                     objects.push(Object {
                         name: object_name,
-                        shape: Shape::Mesh(mesh),
+                        shape: Shape::Mesh {
+                            mesh,
+                            placement,
+                            instances: instances.clone(),
+                        },
                         material,
+                        motion: motion.clone(),
                     });
                 }
                 continue;
@@ -354,6 +411,7 @@ impl Cx<'_> {
                 name: name.to_owned(),
                 shape: self.shape(s, name)?,
                 material,
+                motion: self.shape_motion(r, name)?,
             });
         }
 
@@ -414,16 +472,7 @@ impl Cx<'_> {
             None => Vec3::Y,
         };
         let vfov_deg = match &r.vfov_deg {
-            Some(v) => {
-                let f = self.number(label, "vfov_deg", v)?;
-                if !(f > 0.0 && f < 180.0) {
-                    return Err(self.invalid(
-                        v.span(),
-                        format!("camera: vfov_deg must be in (0, 180) degrees, got {f}"),
-                    ));
-                }
-                f
-            }
+            Some(v) => self.field_of_view(label, v)?,
             None => DEFAULT_VFOV_DEG,
         };
         if r.pitch_deg.is_some() && r.yaw_deg.is_none() {
@@ -491,15 +540,18 @@ impl Cx<'_> {
             Some(f) => *f.get_ref(),
             None => DEFAULT_FRAMES,
         };
-        let keys = present_keys!(r, center, radius, height);
-        match r.kind.get_ref().as_str() {
+        let duration_s = match &r.duration_s {
+            Some(d) => Some(self.positive_seconds(label, "duration_s", d)?),
+            None => None,
+        };
+        let mut keys = present_keys!(r, center, radius, height, keys);
+        if let Some(l) = &r.looped {
+            keys.push(("loop", l.span()));
+        }
+        let motion = match r.kind.get_ref().as_str() {
             "sweep" => {
                 self.only_keys(label, "a sweep path", &keys, &[])?;
-                Ok(CameraPath::Sweep { frames })
-            }
-            "pans" => {
-                self.only_keys(label, "a pans path", &keys, &[])?;
-                Ok(CameraPath::Pans { frames })
+                PathMotion::Sweep
             }
             "orbit" => {
                 self.only_keys(
@@ -522,20 +574,161 @@ impl Cx<'_> {
                     Some(h) => self.number(label, "height", h)?,
                     None => 0.0,
                 };
-                Ok(CameraPath::Orbit {
+                PathMotion::Orbit {
                     center,
                     radius,
                     height,
-                    frames,
-                })
+                }
             }
-            other => Err(self.invalid(
-                r.kind.span(),
+            "pans" => {
+                self.only_keys(label, "a pans path", &keys, &[])?;
+                PathMotion::Pans
+            }
+            "keys" => {
+                self.only_keys(label, "a keys path", &keys, &["keys", "loop"])?;
+                let path = self.keyed_path(raw, frames, duration_s)?;
+                PathMotion::Keys(path)
+            }
+            other => {
+                return Err(self.invalid(
+                    r.kind.span(),
+                    format!(
+                        "path: unknown path type {other:?} (expected \"sweep\", \"orbit\", \"pans\" or \"keys\")"
+                    ),
+                ));
+            }
+        };
+        Ok(CameraPath {
+            motion,
+            frames,
+            duration_s,
+        })
+    }
+
+    /// The keys of a `type = "keys"` path: at least two, from t = 0, strictly increasing, all
+    /// looking the same way; looped, all before the path's end.
+    fn keyed_path(
+        &self,
+        raw: &Spanned<RawPath>,
+        frames: u32,
+        duration_s: Option<f64>,
+    ) -> Result<KeyedPath, SceneError> {
+        let r = raw.get_ref();
+        let raw_keys = self.required("path", "keys", &r.keys, raw)?;
+        if raw_keys.get_ref().len() < 2 {
+            return Err(self.invalid(
+                raw_keys.span(),
                 format!(
-                    "path: unknown path type {other:?} (expected \"sweep\", \"orbit\" or \"pans\")"
+                    "path: a keys path needs at least two keys, got {}",
+                    raw_keys.get_ref().len()
                 ),
-            )),
+            ));
         }
+        let mut keys: Vec<CameraKey> = Vec::with_capacity(raw_keys.get_ref().len());
+        for (i, k) in raw_keys.get_ref().iter().enumerate() {
+            let label = &format!("path: key {}", i + 1);
+            let kr = k.get_ref();
+            let t = self.seconds(label, "t", &kr.t)?;
+            match keys.last() {
+                None if t != 0.0 => {
+                    return Err(self.invalid(
+                        kr.t.span(),
+                        format!("{label}: the first key must be at t = 0, got {t}"),
+                    ));
+                }
+                Some(prev) if t <= prev.t => {
+                    return Err(self.invalid(
+                        kr.t.span(),
+                        format!(
+                            "{label}: key times must increase, but t = {t} is not after key \
+                             {}'s t = {}",
+                            i, prev.t
+                        ),
+                    ));
+                }
+                _ => {}
+            }
+            let eye = self.vec3(label, "eye", &kr.eye)?;
+            if kr.pitch_deg.is_some() && kr.yaw_deg.is_none() {
+                let span = kr.pitch_deg.as_ref().map_or(k.span(), |p| p.span());
+                return Err(self.invalid(span, format!("{label}: pitch_deg needs yaw_deg")));
+            }
+            let look = match (&kr.target, &kr.yaw_deg) {
+                (Some(t), None) => {
+                    let target = self.vec3(label, "target", t)?;
+                    if target == eye {
+                        return Err(
+                            self.invalid(t.span(), format!("{label}: target must differ from eye"))
+                        );
+                    }
+                    KeyLook::Target(target)
+                }
+                (None, Some(y)) => KeyLook::YawPitch {
+                    yaw_deg: self.number(label, "yaw_deg", y)?,
+                    pitch_deg: match &kr.pitch_deg {
+                        Some(p) => self.number(label, "pitch_deg", p)?,
+                        None => 0.0,
+                    },
+                },
+                (Some(_), Some(y)) => {
+                    return Err(self.invalid(
+                        y.span(),
+                        format!("{label}: give `target` or `yaw_deg`, not both"),
+                    ));
+                }
+                (None, None) => {
+                    return Err(self.invalid(
+                        k.span(),
+                        format!("{label}: give `target` or `yaw_deg` (and `pitch_deg`)"),
+                    ));
+                }
+            };
+            if let Some(first) = keys.first()
+                && matches!(first.look, KeyLook::Target(_)) != matches!(look, KeyLook::Target(_))
+            {
+                return Err(self.invalid(
+                    k.span(),
+                    format!(
+                        "{label}: every key must look the same way, all with `target` or all \
+                         with `yaw_deg`/`pitch_deg`, but key 1 uses {}",
+                        if matches!(first.look, KeyLook::Target(_)) {
+                            "`target`"
+                        } else {
+                            "`yaw_deg`"
+                        }
+                    ),
+                ));
+            }
+            let vfov_deg = match &kr.vfov_deg {
+                Some(v) => Some(self.field_of_view(label, v)?),
+                None => None,
+            };
+            keys.push(CameraKey {
+                t,
+                eye,
+                look,
+                vfov_deg,
+            });
+        }
+        let looped = r.looped.as_ref().is_some_and(|l| *l.get_ref());
+        let duration = duration_s.unwrap_or(frames as f64 / 60.0);
+        let last = keys[keys.len() - 1].t;
+        if looped && last >= duration {
+            return Err(self.invalid(
+                raw_keys.span(),
+                format!(
+                    "path: a looped keys path runs from its last key back to its first by the \
+                     path's end, so its last key (t = {last}) must come before duration_s \
+                     ({duration} s{})",
+                    if duration_s.is_none() {
+                        ", from frames / 60"
+                    } else {
+                        ""
+                    }
+                ),
+            ));
+        }
+        Ok(KeyedPath { keys, looped })
     }
 
     fn material(&self, raw: &Spanned<RawMaterial>) -> Result<Material, SceneError> {
@@ -688,6 +881,7 @@ impl Cx<'_> {
                 "translate",
                 "scale",
                 "rotate_y_deg",
+                "instances",
             ],
         )
     }
@@ -712,16 +906,18 @@ impl Cx<'_> {
             Some(dir) => dir.join(path.get_ref()),
             None => Path::new(path.get_ref()).to_owned(),
         };
-        let imported = mesh_import::import_mesh_parts(&file, &transform).map_err(|e| {
-            self.err(
-                path.span(),
-                SceneErrorKind::Mesh,
-                format!("{label}: mesh {:?}: {e}", path.get_ref()),
-            )
-        })?;
+        let imported =
+            mesh_import::import_mesh_parts(&file, &Transform::IDENTITY).map_err(|e| {
+                self.err(
+                    path.span(),
+                    SceneErrorKind::Mesh,
+                    format!("{label}: mesh {:?}: {e}", path.get_ref()),
+                )
+            })?;
         let mut parts = Vec::with_capacity(imported.parts.len());
         let mut kept = 0;
         for part in imported.parts {
+            self.check_placed(&part.mesh, &transform, path, label)?;
             kept += part.mesh.triangles.len();
             match part.material {
                 Some(m) => parts.push((part.mesh, m)),
@@ -750,49 +946,66 @@ impl Cx<'_> {
         Ok((imported.materials, parts))
     }
 
-    fn mesh_transform(&self, r: &RawShape, label: &str) -> Result<MeshTransform, SceneError> {
-        let mut transform = MeshTransform::default();
-        if let Some(t) = &r.translate {
-            transform.translate = self.vec3(label, "translate", t)?;
+    fn mesh_transform(&self, r: &RawShape, label: &str) -> Result<Transform, SceneError> {
+        self.transform(label, &r.translate, &r.rotate_y_deg, &r.scale)
+    }
+
+    /// Checks that `placement` keeps every vertex of `mesh` finite; `at` is the key the
+    /// mesh came from.
+    fn check_placed<T>(
+        &self,
+        mesh: &crate::TriangleMesh,
+        placement: &Transform,
+        at: &Spanned<T>,
+        label: &str,
+    ) -> Result<(), SceneError> {
+        match mesh
+            .positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !placement.apply(**p).is_finite())
+        {
+            Some((vertex, &p)) => Err(self.err(
+                at.span(),
+                SceneErrorKind::Mesh,
+                format!(
+                    "{label}: vertex {vertex} {p} is not finite once placed: {}",
+                    placement.apply(p)
+                ),
+            )),
+            None => Ok(()),
         }
-        if let Some(s) = &r.scale {
-            let scale = Vec3::from(s.get_ref().0);
-            if !scale.is_finite() || scale.cmpeq(Vec3::ZERO).any() {
-                return Err(self.invalid(
-                    s.span(),
-                    format!("{label}: scale must be finite and non-zero, got {scale}"),
-                ));
-            }
-            transform.scale = scale;
-        }
-        if let Some(a) = &r.rotate_y_deg {
-            transform.rotate_y_deg = self.number(label, "rotate_y_deg", a)?;
-        }
-        Ok(transform)
     }
 
     fn mesh(&mut self, raw: &Spanned<RawShape>, label: &str) -> Result<Shape, SceneError> {
         let r = raw.get_ref();
-        let transform = self.mesh_transform(r, label)?;
+        let placement = self.mesh_transform(r, label)?;
         let imported = match (&r.path, &r.positions, &r.triangles) {
             (Some(path), None, None) => {
                 let file = match self.base_dir {
                     Some(dir) => dir.join(path.get_ref()),
                     None => Path::new(path.get_ref()).to_owned(),
                 };
-                mesh_import::import_mesh(&file, &transform).map_err(|e| {
-                    self.err(
-                        path.span(),
-                        SceneErrorKind::Mesh,
-                        format!("{label}: mesh {:?}: {e}", path.get_ref()),
-                    )
-                })?
+                let imported =
+                    mesh_import::import_mesh(&file, &Transform::IDENTITY).map_err(|e| {
+                        self.err(
+                            path.span(),
+                            SceneErrorKind::Mesh,
+                            format!("{label}: mesh {:?}: {e}", path.get_ref()),
+                        )
+                    })?;
+                self.check_placed(&imported.mesh, &placement, path, label)?;
+                imported
             }
             (None, Some(p), Some(t)) => {
                 let positions = p.get_ref().iter().map(|&v| Vec3::from(v)).collect();
-                mesh_import::build_mesh(positions, t.get_ref().clone(), &transform).map_err(
-                    |e| self.err(p.span(), SceneErrorKind::Mesh, format!("{label}: {e}")),
-                )?
+                let imported =
+                    mesh_import::build_mesh(positions, t.get_ref().clone(), &Transform::IDENTITY)
+                        .map_err(|e| {
+                        self.err(p.span(), SceneErrorKind::Mesh, format!("{label}: {e}"))
+                    })?;
+                self.check_placed(&imported.mesh, &placement, p, label)?;
+                imported
             }
             _ => {
                 return Err(self.invalid(
@@ -813,7 +1026,226 @@ impl Cx<'_> {
                 imported.mesh.triangles.len()
             ));
         }
-        Ok(Shape::Mesh(imported.mesh))
+        Ok(Shape::Mesh {
+            mesh: imported.mesh,
+            placement,
+            instances: self.instances(r, label)?,
+        })
+    }
+
+    /// The `instances` of a mesh shape: none, or a non-empty list of transforms.
+    fn instances(&self, r: &RawShape, label: &str) -> Result<Vec<Transform>, SceneError> {
+        let Some(list) = &r.instances else {
+            return Ok(Vec::new());
+        };
+        if list.get_ref().is_empty() {
+            return Err(self.invalid(
+                list.span(),
+                format!(
+                    "{label}: instances must list at least one copy (leave the key out for a \
+                     single copy)"
+                ),
+            ));
+        }
+        list.get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, inst)| {
+                let ir = inst.get_ref();
+                self.transform(
+                    &format!("{label}: instance {}", i + 1),
+                    &ir.translate,
+                    &ir.rotate_y_deg,
+                    &ir.scale,
+                )
+            })
+            .collect()
+    }
+
+    /// A transform from its optional parts, each finite, the scale also non-zero.
+    fn transform(
+        &self,
+        label: &str,
+        translate: &Option<Spanned<V3>>,
+        rotate_y_deg: &Option<Spanned<f32>>,
+        scale: &Option<Spanned<Triple>>,
+    ) -> Result<Transform, SceneError> {
+        let mut transform = Transform::IDENTITY;
+        if let Some(t) = translate {
+            transform.translate = self.vec3(label, "translate", t)?;
+        }
+        if let Some(s) = scale {
+            transform.scale = self.scale(label, s)?;
+        }
+        if let Some(a) = rotate_y_deg {
+            transform.rotate_y_deg = self.number(label, "rotate_y_deg", a)?;
+        }
+        Ok(transform)
+    }
+
+    fn scale(&self, label: &str, s: &Spanned<Triple>) -> Result<Vec3, SceneError> {
+        let scale = Vec3::from(s.get_ref().0);
+        if !scale.is_finite() || scale.cmpeq(Vec3::ZERO).any() {
+            return Err(self.invalid(
+                s.span(),
+                format!("{label}: scale must be finite and non-zero, got {scale}"),
+            ));
+        }
+        Ok(scale)
+    }
+
+    /// The `[shapes.motion]` table of shape `name`, if any.
+    fn shape_motion(&self, r: &RawShape, name: &str) -> Result<Option<Motion>, SceneError> {
+        let Some(raw) = &r.motion else {
+            return Ok(None);
+        };
+        let label = &format!("shape {name:?}: motion");
+        let kind = r.kind.get_ref().as_str();
+        if kind == "plane" {
+            return Err(self.invalid(
+                raw.span(),
+                format!(
+                    "shape {name:?}: a plane cannot move (it is infinite); use a quad for a \
+                     moving floor or wall"
+                ),
+            ));
+        }
+        let m = raw.get_ref();
+        let mut keys: Vec<MotionKey> = Vec::new();
+        if let Some(list) = &m.keys {
+            for (i, k) in list.get_ref().iter().enumerate() {
+                let key_label = &format!("{label}: key {}", i + 1);
+                let kr = k.get_ref();
+                let t = self.seconds(key_label, "t", &kr.t)?;
+                if let Some(prev) = keys.last()
+                    && t <= prev.t
+                {
+                    return Err(self.invalid(
+                        kr.t.span(),
+                        format!(
+                            "{key_label}: key times must increase, but t = {t} is not after \
+                             key {i}'s t = {}",
+                            prev.t
+                        ),
+                    ));
+                }
+                let scale = match &kr.scale {
+                    Some(s) => {
+                        let v = self.scale(key_label, s)?;
+                        if kind == "sphere" && !(v.x == v.y && v.y == v.z) {
+                            return Err(self.invalid(
+                                s.span(),
+                                format!(
+                                    "{key_label}: a sphere stays a sphere, so its scale must be \
+                                     one number, got {v}"
+                                ),
+                            ));
+                        }
+                        Some(v)
+                    }
+                    None => None,
+                };
+                keys.push(MotionKey {
+                    t,
+                    translate: match &kr.translate {
+                        Some(v) => Some(self.vec3(key_label, "translate", v)?),
+                        None => None,
+                    },
+                    rotate_y_deg: match &kr.rotate_y_deg {
+                        Some(a) => Some(self.number(key_label, "rotate_y_deg", a)?),
+                        None => None,
+                    },
+                    scale,
+                });
+            }
+            if keys.is_empty() {
+                return Err(self.invalid(
+                    list.span(),
+                    format!("{label}: keys must list at least one key"),
+                ));
+            }
+        }
+        let looped = m.looped.as_ref().is_some_and(|l| *l.get_ref());
+        if looped {
+            let span = m.looped.as_ref().map_or(raw.span(), |l| l.span());
+            let (Some(first), Some(last)) = (keys.first(), keys.last()) else {
+                return Err(self.invalid(span, format!("{label}: loop needs keys to repeat")));
+            };
+            if keys.len() < 2
+                || (first.translate, first.rotate_y_deg, first.scale)
+                    != (last.translate, last.rotate_y_deg, last.scale)
+            {
+                return Err(self.invalid(
+                    span,
+                    format!(
+                        "{label}: a looped motion's last key closes the lap, so it must repeat \
+                         the first key's translate, rotate_y_deg and scale (at a later t)"
+                    ),
+                ));
+            }
+        }
+        let spin_deg_per_s = match &m.spin_deg_per_s {
+            Some(s) => self.number(label, "spin_deg_per_s", s)?,
+            None => 0.0,
+        };
+        let visible = match &m.visible {
+            Some(list) => Some(self.visible(list, label)?),
+            None => None,
+        };
+        Ok(Some(Motion {
+            keys,
+            looped,
+            spin_deg_per_s,
+            visible,
+        }))
+    }
+
+    /// Visibility intervals: at least one, each [start, end) not empty, in increasing order
+    /// without overlaps.
+    fn visible(
+        &self,
+        list: &Spanned<Vec<Spanned<[f64; 2]>>>,
+        label: &str,
+    ) -> Result<Vec<[f64; 2]>, SceneError> {
+        if list.get_ref().is_empty() {
+            return Err(self.invalid(
+                list.span(),
+                format!(
+                    "{label}: visible must list at least one [start, end] interval (leave it \
+                     out for always)"
+                ),
+            ));
+        }
+        let mut spans: Vec<[f64; 2]> = Vec::new();
+        for (i, v) in list.get_ref().iter().enumerate() {
+            let [start, end] = *v.get_ref();
+            let which = format!("{label}: visible interval {}", i + 1);
+            if !(start.is_finite() && end.is_finite()) {
+                return Err(self.invalid(
+                    v.span(),
+                    format!("{which} [{start}, {end}] must be finite numbers of seconds"),
+                ));
+            }
+            if end <= start {
+                return Err(self.invalid(
+                    v.span(),
+                    format!("{which} [{start}, {end}] is empty: its end must be after its start"),
+                ));
+            }
+            if let Some(&[p_start, p_end]) = spans.last()
+                && start < p_end
+            {
+                return Err(self.invalid(
+                    v.span(),
+                    format!(
+                        "{which} [{start}, {end}] overlaps or precedes interval {i} \
+                         [{p_start}, {p_end}]: list the intervals in time order, apart"
+                    ),
+                ));
+            }
+            spans.push([start, end]);
+        }
+        Ok(spans)
     }
 
     /// Rejects keys of `keys` that are not in `allowed` for a table of this kind.
@@ -830,7 +1262,7 @@ impl Cx<'_> {
                 format!(
                     "{label}: key `{key}` does not apply to {kind} (it takes {})",
                     if allowed.is_empty() {
-                        "only `frames`".to_owned()
+                        "only `frames` and `duration_s`".to_owned()
                     } else {
                         allowed
                             .iter()
@@ -864,6 +1296,48 @@ impl Cx<'_> {
             Err(self.invalid(
                 v.span(),
                 format!("{label}: {key} must be a finite number, got {x}"),
+            ))
+        }
+    }
+
+    fn field_of_view(&self, label: &str, v: &Spanned<f32>) -> Result<f32, SceneError> {
+        let f = self.number(label, "vfov_deg", v)?;
+        if f > 0.0 && f < 180.0 {
+            Ok(f)
+        } else {
+            Err(self.invalid(
+                v.span(),
+                format!("{label}: vfov_deg must be in (0, 180) degrees, got {f}"),
+            ))
+        }
+    }
+
+    /// A time in seconds: any finite number.
+    fn seconds(&self, label: &str, key: &str, v: &Spanned<f64>) -> Result<f64, SceneError> {
+        let x = *v.get_ref();
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.invalid(
+                v.span(),
+                format!("{label}: {key} must be a finite number of seconds, got {x}"),
+            ))
+        }
+    }
+
+    fn positive_seconds(
+        &self,
+        label: &str,
+        key: &str,
+        v: &Spanned<f64>,
+    ) -> Result<f64, SceneError> {
+        let x = self.seconds(label, key, v)?;
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(
+                v.span(),
+                format!("{label}: {key} must be positive, got {x}"),
             ))
         }
     }

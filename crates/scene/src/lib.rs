@@ -13,9 +13,13 @@ pub mod light;
 pub mod load;
 pub mod material;
 pub mod mesh_import;
+pub mod motion;
 pub mod path;
+pub mod pose;
 pub mod scene;
 pub mod shape;
+mod spline;
+pub mod transform;
 pub mod writer;
 
 pub use builtin::{
@@ -28,7 +32,10 @@ pub use glam::Vec3;
 pub use light::PointLight;
 pub use load::{load_scene, load_scene_file, load_scene_file_with_notes};
 pub use material::{Checker, Material};
-pub use path::CameraPath;
+pub use motion::{Motion, MotionKey};
+pub use path::{CameraKey, CameraPath, KeyLook, KeyedPath, PathMotion};
+pub use pose::Pose;
 pub use scene::{Object, Scene};
 pub use shape::{Shape, TriangleMesh};
+pub use transform::Transform;
 pub use writer::scene_to_toml;

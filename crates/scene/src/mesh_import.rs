@@ -3,44 +3,9 @@
 //! [`TriangleMesh`]es, and the checks every mesh goes through (also inline meshes written in a
 //! scene file): finite vertices, indices in range, degenerate triangles dropped, not empty.
 
-use crate::{Material, TriangleMesh};
+use crate::{Material, Transform, TriangleMesh};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
-
-/// Placement of a mesh in the world: scale (per axis) first, then a rotation about +y, then
-/// a translation. The identity transform leaves positions bit-for-bit unchanged.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MeshTransform {
-    pub translate: Vec3,
-    pub scale: Vec3,
-    /// Right-handed rotation about the +y axis, in degrees.
-    pub rotate_y_deg: f32,
-}
-
-impl Default for MeshTransform {
-    fn default() -> Self {
-        Self {
-            translate: Vec3::ZERO,
-            scale: Vec3::ONE,
-            rotate_y_deg: 0.0,
-        }
-    }
-}
-
-impl MeshTransform {
-    /// Whether this transform changes nothing (it is then not applied at all).
-    pub fn is_identity(&self) -> bool {
-        *self == Self::default()
-    }
-
-    /// The world-space position of model-space point `p`.
-    pub fn apply(&self, p: Vec3) -> Vec3 {
-        let s = p * self.scale;
-        let (sin, cos) = self.rotate_y_deg.to_radians().sin_cos();
-        let r = Vec3::new(cos * s.x + sin * s.z, s.y, -sin * s.x + cos * s.z);
-        r + self.translate
-    }
-}
 
 /// A mesh ready for a scene, with what the import had to leave out.
 #[derive(Clone, Debug, PartialEq)]
@@ -114,10 +79,7 @@ pub struct ImportedParts {
 /// Reads the mesh file at `path` (OBJ or glTF, chosen by the extension) and places it
 /// with `transform`, all of its triangles merged into one mesh (the file's materials are
 /// not read).
-pub fn import_mesh(
-    path: &Path,
-    transform: &MeshTransform,
-) -> Result<ImportedMesh, MeshImportError> {
+pub fn import_mesh(path: &Path, transform: &Transform) -> Result<ImportedMesh, MeshImportError> {
     let (_, groups) = read_file(path)?;
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
@@ -136,7 +98,7 @@ pub fn import_mesh(
 /// materials themselves), or a single part without a material for an OBJ file.
 pub fn import_mesh_parts(
     path: &Path,
-    transform: &MeshTransform,
+    transform: &Transform,
 ) -> Result<ImportedParts, MeshImportError> {
     let (materials, groups) = read_file(path)?;
     let invalid = |problem| MeshImportError::Invalid {
@@ -291,7 +253,7 @@ fn parse_obj(text: &str) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), tobj::LoadError> 
 pub fn build_mesh(
     positions: Vec<Vec3>,
     triangles: Vec<[u32; 3]>,
-    transform: &MeshTransform,
+    transform: &Transform,
 ) -> Result<ImportedMesh, MeshProblem> {
     let check_finite = |positions: &[Vec3]| match positions.iter().position(|p| !p.is_finite()) {
         Some(vertex) => Err(MeshProblem::NonFinite {
@@ -343,31 +305,17 @@ mod tests {
     use super::*;
 
     #[test]
-    fn transform_order_is_scale_rotate_translate() {
-        let t = MeshTransform {
-            translate: Vec3::new(10.0, 0.0, 0.0),
-            scale: Vec3::splat(2.0),
-            rotate_y_deg: 90.0,
-        };
-        // (1,0,0) scaled to (2,0,0), rotated +90° about y to (0,0,-2), moved to (10,0,-2).
-        let p = t.apply(Vec3::X);
-        assert!((p - Vec3::new(10.0, 0.0, -2.0)).length() < 1e-5, "{p}");
-        assert!(MeshTransform::default().is_identity());
-        assert!(!t.is_identity());
-    }
-
-    #[test]
     fn degenerate_triangles_are_dropped_and_counted() {
         let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(2.0, 0.0, 0.0)];
         let tris = vec![[0, 1, 2], [0, 1, 3], [2, 2, 1]];
-        let m = build_mesh(positions, tris, &MeshTransform::default()).unwrap();
+        let m = build_mesh(positions, tris, &Transform::default()).unwrap();
         assert_eq!(m.mesh.triangles, vec![[0, 1, 2]]);
         assert_eq!(m.degenerate_dropped, 2);
     }
 
     #[test]
     fn bad_meshes_are_errors() {
-        let id = MeshTransform::default();
+        let id = Transform::default();
         let e = build_mesh(vec![Vec3::ZERO], vec![[0, 0, 5]], &id).unwrap_err();
         assert!(matches!(e, MeshProblem::IndexOutOfRange { index: 5, .. }));
         let e = build_mesh(vec![Vec3::NAN], vec![[0, 0, 0]], &id).unwrap_err();

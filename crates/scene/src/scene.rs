@@ -1,14 +1,29 @@
 //! The whole scene: objects, materials, lights, environment, camera and camera path.
 
-use crate::{Camera, CameraPath, Material, PointLight, Shape};
+use crate::{Camera, CameraPath, Material, Motion, PointLight, Shape};
 use glam::Vec3;
 
-/// A shape with a name (for messages and round-trips) and an index into `Scene::materials`.
+/// A shape with a name (for messages and round-trips), an index into `Scene::materials`,
+/// and how it moves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Object {
     pub name: String,
     pub shape: Shape,
     pub material: usize,
+    /// `None`: the object never moves and always exists.
+    pub motion: Option<Motion>,
+}
+
+impl Object {
+    /// An object that never moves.
+    pub fn fixed(name: impl Into<String>, shape: Shape, material: usize) -> Self {
+        Self {
+            name: name.into(),
+            shape,
+            material,
+            motion: None,
+        }
+    }
 }
 
 /// A complete, validated scene, ready for any renderer.
@@ -43,5 +58,10 @@ impl Scene {
     /// The camera at scene time `t_s` seconds along the scene's path.
     pub fn camera_at_time(&self, t_s: f64) -> Camera {
         self.path.camera_at_time(&self.camera, t_s)
+    }
+
+    /// Whether any object moves, appears or disappears.
+    pub fn is_animated(&self) -> bool {
+        self.objects.iter().any(|o| o.motion.is_some())
     }
 }

@@ -1,5 +1,7 @@
-//! Geometric primitives. All coordinates are world space, metres, right-handed, +y up.
+//! Geometric primitives. Coordinates are world space, metres, right-handed, +y up, except a
+//! mesh's vertices, which its placement puts in the world.
 
+use crate::Transform;
 use glam::Vec3;
 
 /// One geometric primitive of a scene.
@@ -21,11 +23,43 @@ pub enum Shape {
         point: Vec3,
         normal: Vec3,
     },
-    /// Triangles already placed in world space.
-    Mesh(TriangleMesh),
+    /// A triangle mesh, put in the world by `placement`, in one copy or in one copy per
+    /// instance.
+    Mesh {
+        mesh: TriangleMesh,
+        /// Model space to world: the shape's `scale`, `rotate_y_deg` and `translate`.
+        placement: Transform,
+        /// Copies of the mesh: each instance's transform is applied after the placement's
+        /// scale and rotation and before its translation, i.e. in world units about the
+        /// placement's origin. Empty: one copy at the placement.
+        instances: Vec<Transform>,
+    },
 }
 
-/// An indexed triangle mesh in world space. Degenerate triangles are removed on import.
+impl Shape {
+    /// A single copy of `mesh` at `placement`.
+    pub fn mesh(mesh: TriangleMesh, placement: Transform) -> Self {
+        Shape::Mesh {
+            mesh,
+            placement,
+            instances: Vec::new(),
+        }
+    }
+
+    /// The point motion turns and scales the shape about: a mesh's translation, a sphere's
+    /// centre, a quad's corner, a plane's point.
+    pub fn origin(&self) -> Vec3 {
+        match self {
+            Shape::Sphere { center, .. } => *center,
+            Shape::Quad { corner, .. } => *corner,
+            Shape::Plane { point, .. } => *point,
+            Shape::Mesh { placement, .. } => placement.translate,
+        }
+    }
+}
+
+/// An indexed triangle mesh in its own (model) space. Degenerate triangles are removed on
+/// import.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct TriangleMesh {
     pub positions: Vec<Vec3>,

@@ -2,7 +2,7 @@
 //! every float is written in Rust's shortest round-trip form, meshes as inline triangle data.
 
 use crate::format::yaw_pitch_deg_camera;
-use crate::{Camera, CameraPath, Material, Scene, Shape};
+use crate::{Camera, KeyLook, Material, Motion, PathMotion, Scene, Shape, Transform};
 use glam::Vec3;
 use std::fmt::Write;
 
@@ -28,24 +28,43 @@ fn write_scene(w: &mut String, s: &Scene) -> std::fmt::Result {
     write_camera(w, &s.camera)?;
 
     writeln!(w, "\n[path]")?;
-    match s.path {
-        CameraPath::Sweep { frames } => {
-            writeln!(w, "type = \"sweep\"\nframes = {frames}")?;
-        }
-        CameraPath::Pans { frames } => {
-            writeln!(w, "type = \"pans\"\nframes = {frames}")?;
-        }
-        CameraPath::Orbit {
+    match &s.path.motion {
+        PathMotion::Sweep => writeln!(w, "type = \"sweep\"")?,
+        PathMotion::Pans => writeln!(w, "type = \"pans\"")?,
+        PathMotion::Orbit {
             center,
             radius,
             height,
-            frames,
         } => {
             writeln!(w, "type = \"orbit\"")?;
-            writeln!(w, "center = {}", vec3(center))?;
-            writeln!(w, "radius = {}", float(radius))?;
-            writeln!(w, "height = {}", float(height))?;
-            writeln!(w, "frames = {frames}")?;
+            writeln!(w, "center = {}", vec3(*center))?;
+            writeln!(w, "radius = {}", float(*radius))?;
+            writeln!(w, "height = {}", float(*height))?;
+        }
+        PathMotion::Keys(keyed) => {
+            writeln!(w, "type = \"keys\"\nloop = {}", keyed.looped)?;
+        }
+    }
+    writeln!(w, "frames = {}", s.path.frames)?;
+    if let Some(d) = s.path.duration_s {
+        writeln!(w, "duration_s = {}", seconds(d))?;
+    }
+    if let PathMotion::Keys(keyed) = &s.path.motion {
+        for k in &keyed.keys {
+            writeln!(w, "\n[[path.keys]]\nt = {}", seconds(k.t))?;
+            writeln!(w, "eye = {}", vec3(k.eye))?;
+            match k.look {
+                KeyLook::Target(t) => writeln!(w, "target = {}", vec3(t))?,
+                KeyLook::YawPitch { yaw_deg, pitch_deg } => writeln!(
+                    w,
+                    "yaw_deg = {}\npitch_deg = {}",
+                    float(yaw_deg),
+                    float(pitch_deg)
+                )?,
+            }
+            if let Some(f) = k.vfov_deg {
+                writeln!(w, "vfov_deg = {}", float(f))?;
+            }
         }
     }
 
@@ -101,7 +120,11 @@ fn write_scene(w: &mut String, s: &Scene) -> std::fmt::Result {
                 writeln!(w, "type = \"plane\"\nmaterial = {}", string(material))?;
                 writeln!(w, "point = {}\nnormal = {}", vec3(*point), vec3(*normal))?;
             }
-            Shape::Mesh(mesh) => {
+            Shape::Mesh {
+                mesh,
+                placement,
+                instances,
+            } => {
                 writeln!(w, "type = \"mesh\"\nmaterial = {}", string(material))?;
                 writeln!(w, "positions = [")?;
                 for p in &mesh.positions {
@@ -112,7 +135,24 @@ fn write_scene(w: &mut String, s: &Scene) -> std::fmt::Result {
                     writeln!(w, "  [{a}, {b}, {c}],")?;
                 }
                 writeln!(w, "]")?;
+                for (key, value) in transform_keys(placement) {
+                    writeln!(w, "{key} = {value}")?;
+                }
+                if !instances.is_empty() {
+                    writeln!(w, "instances = [")?;
+                    for i in instances {
+                        let keys: Vec<String> = transform_keys(i)
+                            .into_iter()
+                            .map(|(k, v)| format!("{k} = {v}"))
+                            .collect();
+                        writeln!(w, "  {{ {} }},", keys.join(", "))?;
+                    }
+                    writeln!(w, "]")?;
+                }
             }
+        }
+        if let Some(m) = &o.motion {
+            write_motion(w, m)?;
         }
     }
 
@@ -120,6 +160,50 @@ fn write_scene(w: &mut String, s: &Scene) -> std::fmt::Result {
         writeln!(w, "\n[[lights]]")?;
         writeln!(w, "position = {}", vec3(l.position))?;
         writeln!(w, "intensity = {}", triple(l.intensity))?;
+    }
+    Ok(())
+}
+
+/// The keys of a transform whose values differ from the identity's (bit for bit, so that
+/// -0.0 is written), as (key, TOML value).
+fn transform_keys(t: &Transform) -> Vec<(&'static str, String)> {
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    let id = Transform::IDENTITY;
+    let mut keys = Vec::new();
+    if bits(t.translate) != bits(id.translate) {
+        keys.push(("translate", vec3(t.translate)));
+    }
+    if t.rotate_y_deg.to_bits() != id.rotate_y_deg.to_bits() {
+        keys.push(("rotate_y_deg", float(t.rotate_y_deg)));
+    }
+    if bits(t.scale) != bits(id.scale) {
+        keys.push(("scale", triple(t.scale)));
+    }
+    keys
+}
+
+/// A `[shapes.motion]` table and its keys, after the shape's own keys.
+fn write_motion(w: &mut String, m: &Motion) -> std::fmt::Result {
+    writeln!(w, "\n[shapes.motion]\nloop = {}", m.looped)?;
+    writeln!(w, "spin_deg_per_s = {}", float(m.spin_deg_per_s))?;
+    if let Some(spans) = &m.visible {
+        let spans: Vec<String> = spans
+            .iter()
+            .map(|[a, b]| format!("[{}, {}]", seconds(*a), seconds(*b)))
+            .collect();
+        writeln!(w, "visible = [{}]", spans.join(", "))?;
+    }
+    for k in &m.keys {
+        writeln!(w, "\n[[shapes.motion.keys]]\nt = {}", seconds(k.t))?;
+        if let Some(t) = k.translate {
+            writeln!(w, "translate = {}", vec3(t))?;
+        }
+        if let Some(a) = k.rotate_y_deg {
+            writeln!(w, "rotate_y_deg = {}", float(a))?;
+        }
+        if let Some(s) = k.scale {
+            writeln!(w, "scale = {}", triple(s))?;
+        }
     }
     Ok(())
 }
@@ -157,6 +241,11 @@ pub(crate) fn float(x: f32) -> String {
     } else {
         format!("{:?}", f64::from(x))
     }
+}
+
+/// A time in seconds (an `f64`) as a TOML float that reads back to the same bits.
+fn seconds(x: f64) -> String {
+    format!("{x:?}")
 }
 
 fn vec3(v: Vec3) -> String {

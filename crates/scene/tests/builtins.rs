@@ -12,7 +12,7 @@ fn assert_identical(a: &Scene, b: &Scene) {
 
 #[test]
 fn names_descriptions_and_default() {
-    assert_eq!(builtin_names(), ["corridor", "cornell", "spheres"]);
+    assert_eq!(builtin_names(), ["corridor", "cornell", "spheres", "flyby"]);
     assert_eq!(DEFAULT_SCENE, "corridor");
     for (b, name) in builtin_scenes().iter().zip(builtin_names()) {
         assert_eq!(b.name, *name);
@@ -210,7 +210,7 @@ fn corridor_matches_the_spec() {
     assert_eq!(s.camera.forward, v(0.0, 0.0, -1.0));
     assert_eq!(s.camera.up, Vec3::Y);
     assert_eq!(s.camera.vfov_deg, 60.0);
-    assert_eq!(s.path, CameraPath::Sweep { frames: 720 });
+    assert_eq!(s.path, CameraPath::sweep(720));
     // Frame 0 of the sweep is the scene's camera.
     assert_eq!(s.camera_at(0, 720), s.camera);
 }
@@ -248,7 +248,7 @@ fn cornell_and_spheres_have_what_they_promise() {
     assert!(kinds(&s, |m| matches!(m, Material::Mirror { .. })) > 0);
     assert!(kinds(&s, |m| matches!(m, Material::Dielectric { .. })) > 0);
     assert!(s.lights.len() >= 3);
-    assert!(matches!(s.path, CameraPath::Orbit { .. }));
+    assert!(matches!(s.path.motion, PathMotion::Orbit { .. }));
 }
 
 #[test]
@@ -273,4 +273,66 @@ fn paths_are_functions_of_time() {
         );
         assert!((a.forward - b.forward).length() < 1e-5, "{name}");
     }
+}
+
+/// The objects of `s` that exist at time `t`, each mesh copy counted.
+fn objects_at(s: &Scene, t: f64) -> usize {
+    s.objects
+        .iter()
+        .filter_map(|o| o.pose_at(t))
+        .map(|p| match p {
+            Pose::Mesh { copies, .. } => copies.len(),
+            _ => 1,
+        })
+        .sum()
+}
+
+#[test]
+fn flyby_moves_as_described() {
+    let s = builtin("flyby").unwrap();
+    assert!(s.is_animated());
+    assert_eq!(s.path.duration_s(), 12.0);
+    assert_eq!(s.path.frames(), 720);
+    let PathMotion::Keys(keys) = &s.path.motion else {
+        panic!("flyby flies a keyed path");
+    };
+    assert!(keys.looped);
+    // The swarm appears at once at 4 s: ten times the objects (and more), gone at 8 s.
+    let (before, during) = (objects_at(&s, 3.99), objects_at(&s, 4.0));
+    assert!(during >= 10 * before, "{before} -> {during}");
+    // At 8 s the swarm is gone and the glass ball has come.
+    assert_eq!(objects_at(&s, 8.0), before + 1);
+    assert_eq!(objects_at(&s, 11.5), before);
+    // Objects fly between the mirrors (x in (-2.5, 2.5)) and move.
+    let chrome = object(&s, "chrome_flyer");
+    let (Some(Pose::Sphere { center: a, .. }), Some(Pose::Sphere { center: b, .. })) =
+        (chrome.pose_at(0.0), chrome.pose_at(1.5))
+    else {
+        panic!("chrome flyer is a sphere");
+    };
+    assert!(a.x < -1.5 && b.x > 1.5, "{a} -> {b}");
+    // The glass ball passes close in front of the camera around 9.5 s.
+    let glass = object(&s, "glass_passer");
+    let Some(Pose::Sphere { center, .. }) = glass.pose_at(9.5) else {
+        panic!("the glass ball exists at 9.5 s");
+    };
+    let cam = s.camera_at_time(9.5);
+    let to_glass = center - cam.eye;
+    let distance = to_glass.length();
+    let off_axis = to_glass
+        .normalize()
+        .dot(cam.forward.normalize())
+        .acos()
+        .to_degrees();
+    assert!(
+        distance < 3.0 && off_axis < 10.0,
+        "{distance} m, {off_axis} deg"
+    );
+    assert!(glass.pose_at(7.0).is_none() && glass.pose_at(11.5).is_none());
+    // The camera's flight is smooth and closed: where it starts, it ends.
+    let (start, end) = (s.camera_at_time(0.0), s.camera_at_time(11.9999));
+    assert!(
+        (start.eye - end.eye).length() < 1e-3,
+        "{start:?} vs {end:?}"
+    );
 }

@@ -20,17 +20,20 @@ fn bunny_cornell_loads_with_all_triangles() {
         .objects
         .iter()
         .filter_map(|o| match &o.shape {
-            Shape::Mesh(m) => Some(m),
+            Shape::Mesh {
+                mesh, placement, ..
+            } => Some((mesh, placement)),
             _ => None,
         })
         .collect();
     assert_eq!(meshes.len(), 1);
-    assert_eq!(meshes[0].triangles.len(), 69_451);
+    let (mesh, placement) = meshes[0];
+    assert_eq!(mesh.triangles.len(), 69_451);
     // The bunny sits on the floor (y = 0) inside the box.
-    let min_y = meshes[0]
+    let min_y = mesh
         .positions
         .iter()
-        .map(|p| p.y)
+        .map(|&p| placement.apply(p).y)
         .fold(f32::INFINITY, f32::min);
     assert!(min_y.abs() < 0.02, "bunny's lowest point {min_y}");
 }

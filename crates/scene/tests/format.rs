@@ -10,7 +10,7 @@ fn defaults() {
     assert_eq!(s.name, "minimal");
     assert_eq!(s.background, Vec3::ZERO);
     assert_eq!(s.ambient, 0.0);
-    assert_eq!(s.path, CameraPath::Sweep { frames: 720 });
+    assert_eq!(s.path, CameraPath::sweep(720));
     assert_eq!(s.camera.vfov_deg, 60.0);
     assert_eq!(s.camera.up, Vec3::Y);
     assert_eq!(s.camera.forward, Vec3::NEG_Z);
@@ -82,11 +82,14 @@ fn orbit_path() {
     let s = parse_scene(&text, "o.toml", None).unwrap();
     assert_eq!(
         s.path,
-        CameraPath::Orbit {
-            center: Vec3::new(1.0, 2.0, 3.0),
-            radius: 4.0,
-            height: 5.0,
-            frames: 720
+        CameraPath {
+            motion: PathMotion::Orbit {
+                center: Vec3::new(1.0, 2.0, 3.0),
+                radius: 4.0,
+                height: 5.0,
+            },
+            frames: 720,
+            duration_s: None,
         }
     );
 }
@@ -95,7 +98,7 @@ fn orbit_path() {
 fn pans_path() {
     let text = format!("{MINIMAL}[path]\ntype = \"pans\"\nframes = 360\n");
     let s = parse_scene(&text, "p.toml", None).unwrap();
-    assert_eq!(s.path, CameraPath::Pans { frames: 360 });
+    assert_eq!(s.path, CameraPath::pans(360));
     assert_eq!(s.path.duration_s(), 12.0);
     let again = parse_scene(&scene_to_toml(&s), "again.toml", None).unwrap();
     assert_eq!(again.path, s.path);
@@ -171,5 +174,7 @@ fn the_documented_example_parses() {
     let s = parse_scene(&example, "example.toml", Some(&meshes)).unwrap();
     assert_eq!(s.name, "example");
     assert_eq!(s.objects.len(), 4);
-    assert!(matches!(&s.objects[3].shape, Shape::Mesh(m) if m.triangles.len() == 6320));
+    assert!(
+        matches!(&s.objects[3].shape, Shape::Mesh { mesh, .. } if mesh.triangles.len() == 6320)
+    );
 }

@@ -160,7 +160,7 @@ fn two_materials_make_two_objects() {
     assert_eq!(s.materials[s.objects[red].material].0, "pair/red");
     assert_eq!(s.materials[s.objects[gold].material].0, "pair/gold");
     // Each object holds its own triangle: red's is the one moved by +2 x.
-    let Shape::Mesh(m) = &s.objects[red].shape else {
+    let Shape::Mesh { mesh: m, .. } = &s.objects[red].shape else {
         panic!("not a mesh")
     };
     assert_eq!(m.triangles.len(), 1);
@@ -181,7 +181,7 @@ fn scene_material_overrides_the_files() {
     assert_eq!(s.objects[0].name, "pair");
     assert_eq!(s.materials.len(), 1);
     assert_eq!(s.objects[0].material, 0);
-    let Shape::Mesh(m) = &s.objects[0].shape else {
+    let Shape::Mesh { mesh: m, .. } = &s.objects[0].shape else {
         panic!("not a mesh")
     };
     assert_eq!(m.triangles.len(), 2);

@@ -2,8 +2,9 @@
 //! non-finite vertices, out-of-range indices and empty meshes, each naming the file.
 
 use std::path::PathBuf;
+use steadyray_scene::Transform;
 use steadyray_scene::Vec3;
-use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
+use steadyray_scene::mesh_import::import_mesh;
 
 /// A fresh directory for this test's files.
 fn dir(name: &str) -> PathBuf {
@@ -20,7 +21,7 @@ fn write(dir: &std::path::Path, name: &str, bytes: &[u8]) -> PathBuf {
 
 /// The error message of importing `path`, checked to name the file.
 fn import_err(path: &std::path::Path) -> String {
-    let e = import_mesh(path, &MeshTransform::default())
+    let e = import_mesh(path, &Transform::default())
         .unwrap_err()
         .to_string();
     assert!(e.contains(&path.display().to_string()), "{e}");
@@ -67,7 +68,7 @@ fn degenerate_obj_triangles_are_skipped_and_counted() {
         "d.obj",
         b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 3 3 3\n",
     );
-    let m = import_mesh(&p, &MeshTransform::default()).unwrap();
+    let m = import_mesh(&p, &Transform::default()).unwrap();
     assert_eq!(m.degenerate_dropped, 2);
     assert_eq!(m.mesh.triangles, vec![[0, 1, 2]]);
 }
@@ -124,7 +125,7 @@ fn gltf_nodes_place_their_meshes() {
         {"translation": [0, 0, -1], "mesh": 0}
     ]"#;
     let p = gltf_file(&d, "tri.gltf", nodes, [0, 1, 2], 4);
-    let transform = MeshTransform {
+    let transform = Transform {
         translate: Vec3::new(0.0, 5.0, 0.0),
         ..Default::default()
     };

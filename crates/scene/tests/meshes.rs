@@ -1,7 +1,8 @@
 //! OBJ import: the shared test meshes, transforms, malformed files, meshes in scene files.
 
 use std::path::{Path, PathBuf};
-use steadyray_scene::mesh_import::{MeshImportError, MeshProblem, MeshTransform, import_mesh};
+use steadyray_scene::Transform;
+use steadyray_scene::mesh_import::{MeshImportError, MeshProblem, import_mesh};
 use steadyray_scene::*;
 
 fn shared_mesh(name: &str) -> PathBuf {
@@ -20,7 +21,7 @@ fn temp_dir(test: &str) -> PathBuf {
 
 #[test]
 fn teapot_has_all_its_triangles() {
-    let m = import_mesh(&shared_mesh("teapot.obj"), &MeshTransform::default()).unwrap();
+    let m = import_mesh(&shared_mesh("teapot.obj"), &Transform::default()).unwrap();
     assert_eq!(m.mesh.triangles.len() + m.degenerate_dropped, 6320);
     assert_eq!(
         m.degenerate_dropped, 0,
@@ -31,11 +32,7 @@ fn teapot_has_all_its_triangles() {
 
 #[test]
 fn bunny_has_all_its_triangles() {
-    let m = import_mesh(
-        &shared_mesh("stanford-bunny.obj"),
-        &MeshTransform::default(),
-    )
-    .unwrap();
+    let m = import_mesh(&shared_mesh("stanford-bunny.obj"), &Transform::default()).unwrap();
     assert_eq!(m.mesh.triangles.len() + m.degenerate_dropped, 69451);
     assert_eq!(m.degenerate_dropped, 0);
     // Vertices no face uses are not imported.
@@ -44,8 +41,8 @@ fn bunny_has_all_its_triangles() {
 
 #[test]
 fn transform_is_applied() {
-    let plain = import_mesh(&shared_mesh("teapot.obj"), &MeshTransform::default()).unwrap();
-    let t = MeshTransform {
+    let plain = import_mesh(&shared_mesh("teapot.obj"), &Transform::default()).unwrap();
+    let t = Transform {
         translate: Vec3::new(1.0, 2.0, 3.0),
         scale: Vec3::new(0.5, 2.0, 0.5),
         rotate_y_deg: 180.0,
@@ -72,10 +69,16 @@ fn scene_file_mesh_paths_are_relative_to_the_file() {
                  path = \"meshes/pot.obj\"\ntranslate = [0, 0, -1]\nscale = 0.5\nrotate_y_deg = 30\n";
     std::fs::write(dir.join("scene.toml"), scene).unwrap();
     let s = load_scene_file(&dir.join("scene.toml")).unwrap();
-    let Shape::Mesh(mesh) = &s.objects[0].shape else {
+    let Shape::Mesh {
+        mesh, placement, ..
+    } = &s.objects[0].shape
+    else {
         panic!("not a mesh")
     };
     assert_eq!(mesh.triangles.len(), 6320);
+    assert_eq!(placement.translate, Vec3::new(0.0, 0.0, -1.0));
+    assert_eq!(placement.scale, Vec3::splat(0.5));
+    assert_eq!(placement.rotate_y_deg, 30.0);
     // Written back inline, it reads back identically.
     let again = parse_scene(&scene_to_toml(&s), "again.toml", None).unwrap();
     assert_eq!(format!("{s:?}"), format!("{again:?}"));
@@ -91,10 +94,13 @@ fn inline_mesh_with_degenerate_triangle_gives_a_note() {
     let (s, notes) = parse_scene_with_notes(scene, "n.toml", None).unwrap();
     assert_eq!(
         s.objects[0].shape,
-        Shape::Mesh(TriangleMesh {
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
-            triangles: vec![[0, 1, 2]],
-        })
+        Shape::mesh(
+            TriangleMesh {
+                positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+                triangles: vec![[0, 1, 2]],
+            },
+            Transform::IDENTITY
+        )
     );
     assert_eq!(notes.len(), 1);
     assert!(
@@ -118,7 +124,7 @@ fn bad_obj(name: &str, obj: &str, problem: &str) -> MeshImportError {
     let dir = temp_dir(&format!("bad-{}", name.replace('.', "-")));
     let path = dir.join(name);
     std::fs::write(&path, obj).unwrap();
-    let e = import_mesh(&path, &MeshTransform::default()).unwrap_err();
+    let e = import_mesh(&path, &Transform::default()).unwrap_err();
     let msg = e.to_string();
     assert!(
         msg.contains(&path.display().to_string()),
@@ -190,7 +196,7 @@ fn texture_and_normal_indices_are_ignored() {
     let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n\
                f 1/0/0 2/99999999999999999999/ 3//-5\nf 1 1 2\n";
     std::fs::write(&path, obj).unwrap();
-    let m = import_mesh(&path, &MeshTransform::default()).unwrap();
+    let m = import_mesh(&path, &Transform::default()).unwrap();
     assert_eq!(m.mesh.triangles, vec![[0, 1, 2]]);
     assert_eq!(m.degenerate_dropped, 1);
     std::fs::remove_dir_all(&dir).unwrap();

@@ -117,8 +117,8 @@ impl SceneArgs {
         let mut scene = steadyray_scene::load_scene(&self.scene)?;
         let frames = scene.path.frames();
         match self.path {
-            Some(PathChoice::Sweep) => scene.path = CameraPath::Sweep { frames },
-            Some(PathChoice::Pans) => scene.path = CameraPath::Pans { frames },
+            Some(PathChoice::Sweep) => scene.path = CameraPath::sweep(frames),
+            Some(PathChoice::Pans) => scene.path = CameraPath::pans(frames),
             None => {}
         }
         Ok(scene)

@@ -29,13 +29,14 @@ pub fn scene(
                 name: format!("o{i}"),
                 shape,
                 material,
+                motion: None,
             })
             .collect(),
         lights,
         ambient,
         background,
         camera: looking_down_neg_z(),
-        path: CameraPath::Sweep { frames: 1 },
+        path: CameraPath::sweep(1),
     }
 }
 

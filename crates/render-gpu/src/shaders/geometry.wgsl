@@ -1,7 +1,6 @@
-// Ray-primitive intersection and the two scene queries (closest hit, any hit), written as
-// the CPU reference (crates/render-cpu) writes them so that both round alike. Rays hit on
-// t in (T_MIN, t_max). The queries loop over the analytic shapes, then query the triangle
-// BVH (traversal.wgsl).
+// Ray-shape intersection and what shading reads of a hit, written as the CPU reference
+// (crates/render-cpu) writes them so that both round alike. Rays hit on t in
+// (T_MIN, t_max). The scene queries over the two-level BVH are in top_level.wgsl.
 
 // Offset of secondary ray origins along the normal.
 const EPS: f32 = 1e-4;
@@ -58,40 +57,13 @@ fn hit_shape(s: Shape, ray: Ray, t_max: f32) -> f32 {
     return t;
 }
 
-// The nearest hit: its distance (NO_HIT for a miss) and primitive id (shapes first, then
-// triangles at shape_count + their leaf-order index).
+// The nearest hit: its distance (NO_HIT for a miss), its primitive (a shape's index in
+// `shapes`, or for a mesh the triangle's position in `triangles`) and its instance
+// (NO_INSTANCE for a shape).
 struct Hit {
     t: f32,
     prim: u32,
-}
-
-fn closest_hit(ray: Ray) -> Hit {
-    var hit = Hit(NO_HIT, 0u);
-    for (var i = 0u; i < frame.shape_count; i++) {
-        let t = hit_shape(shapes[i], ray, hit.t);
-        if t < hit.t {
-            hit = Hit(t, i);
-        }
-    }
-    if frame.triangle_count == 0u {
-        return hit;
-    }
-    // A triangle at the same t as a shape loses the tie, as on the CPU.
-    let tri = closest_triangle(ray, hit.t);
-    if tri.t < hit.t {
-        hit = Hit(tri.t, frame.shape_count + tri.index);
-    }
-    return hit;
-}
-
-// Whether anything is hit on t in (T_MIN, t_max).
-fn occluded(ray: Ray, t_max: f32) -> bool {
-    for (var i = 0u; i < frame.shape_count; i++) {
-        if hit_shape(shapes[i], ray, t_max) < t_max {
-            return true;
-        }
-    }
-    return frame.triangle_count != 0u && any_triangle(ray, t_max);
+    inst: u32,
 }
 
 // What shading needs of a hit point p on primitive `prim`.
@@ -101,12 +73,12 @@ struct Surface {
     material: u32,
 }
 
-fn surface_at(prim: u32, p: vec3<f32>) -> Surface {
-    if prim >= frame.shape_count {
-        let tri = triangles[prim - frame.shape_count];
-        return Surface(tri.normal, tri.material);
+fn surface_at(hit: Hit, p: vec3<f32>) -> Surface {
+    if hit.inst != NO_INSTANCE {
+        let inst = instances[hit.inst];
+        return Surface(normal_to_world(inst, triangles[hit.prim].normal), inst.material);
     }
-    let s = shapes[prim];
+    let s = shapes[hit.prim];
     if s.kind == SHAPE_SPHERE {
         return Surface((p - s.p0) * s.s1, s.material);
     }
@@ -118,23 +90,24 @@ fn checker_parity(u: f32, v: f32, w: f32, size: f32) -> bool {
     return (cell & 1) != 0;
 }
 
-// The albedo of diffuse material `m` at p on primitive `prim` (docs/shading.md, Checker).
-fn diffuse_albedo(m: Material, prim: u32, p: vec3<f32>) -> vec3<f32> {
+// The albedo of diffuse material `m` at p on the primitive of `hit` (docs/shading.md,
+// Checker).
+fn diffuse_albedo(m: Material, hit: Hit, p: vec3<f32>) -> vec3<f32> {
     if m.checker_size <= 0.0 {
         return m.colour;
     }
     var odd: bool;
     // Meshes use the 3D checker, as spheres do.
     var kind = SHAPE_SPHERE;
-    if prim < frame.shape_count {
-        kind = shapes[prim].kind;
+    if hit.inst == NO_INSTANCE {
+        kind = shapes[hit.prim].kind;
     }
     if kind == SHAPE_QUAD {
-        let s = shapes[prim];
+        let s = shapes[hit.prim];
         let rel = p - s.p0;
         odd = checker_parity(dot(rel, s.p2) * s.s0, dot(rel, s.p3) * s.s1, 0.0, m.checker_size);
     } else if kind == SHAPE_PLANE {
-        let s = shapes[prim];
+        let s = shapes[hit.prim];
         let rel = p - s.p0;
         odd = checker_parity(dot(rel, s.p2), dot(rel, s.p3), 0.0, m.checker_size);
     } else {

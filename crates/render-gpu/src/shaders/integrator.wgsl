@@ -47,18 +47,18 @@ fn trace_sample(px: u32, py: u32, sample: u32, eye: vec3<f32>, dir: vec3<f32>) -
         }
         let d = ray.dir;
         let p = ray.origin + hit.t * d;
-        let surface = surface_at(hit.prim, p);
+        let surface = surface_at(hit, p);
         let entering = dot(surface.normal, d) < 0.0;
         let n = select(-surface.normal, surface.normal, entering);
         let m = materials[surface.material];
         let goes_on = k < frame.max_depth;
-        record_hit(hit.t, hit.prim, n, goes_on && m.kind == MAT_MIRROR, goes_on && m.kind == MAT_DIELECTRIC);
+        record_hit(hit, n, goes_on && m.kind == MAT_MIRROR, goes_on && m.kind == MAT_DIELECTRIC);
         if m.kind == MAT_EMISSIVE {
             radiance += w * m.colour;
             break;
         }
         if m.kind == MAT_DIFFUSE {
-            radiance += w * local_shading(p, n, diffuse_albedo(m, hit.prim, p));
+            radiance += w * local_shading(p, n, diffuse_albedo(m, hit, p));
             break;
         }
         if k == frame.max_depth {

@@ -23,6 +23,11 @@ const BVH_EMPTY: u32 = 0u;
 const CAST_TILE: u32 = 8u;
 const CAST_MISS: u32 = 0xffffffffu;
 
+// A top-level leaf's index has TOP_INSTANCE set for an instance; a hit on no mesh has
+// instance NO_INSTANCE.
+const TOP_INSTANCE: u32 = 0x80000000u;
+const NO_INSTANCE: u32 = 0xffffffffu;
+
 const SHAPE_SPHERE: u32 = 0u;
 const SHAPE_QUAD: u32 = 1u;
 const SHAPE_PLANE: u32 = 2u;
@@ -55,8 +60,10 @@ struct Frame {
     max_depth: u32,
     width: u32,
     height: u32,
-    shape_count: u32,
-    triangle_count: u32,
+    // The first plane_count shapes are the infinite planes.
+    plane_count: u32,
+    // Leaves of the top level; 0: it is empty.
+    leaf_count: u32,
     light_count: u32,
     groups_x: u32,
     counter_stride: u32,
@@ -66,6 +73,12 @@ struct Frame {
     jitter: vec2<f32>,
     sample_base: u32,
     temporal: u32,
+    // Shapes in `shapes`: the planes, then the frame's spheres and quads (the surface id of
+    // every mesh triangle in the temporal record).
+    shape_count: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // A camera frame (GpuCameraView; CameraFrame of spec/corridor.md) for the temporal history's
@@ -114,11 +127,12 @@ struct Shape {
     s1: f32,
 }
 
-// A mesh triangle in world space with its normal normalize((v1 - v0) × (v2 - v0)), in BVH
-// leaf order; id is its index in scene order (the tie-break among hits at the same t).
+// A mesh triangle in its bottom level's space with its normal normalize((v1 - v0) ×
+// (v2 - v0)), in its mesh BVH's leaf order; id is its index in its mesh (the tie-break among
+// hits at the same t).
 struct Triangle {
     v0: vec3<f32>,
-    material: u32,
+    pad0: u32,
     v1: vec3<f32>,
     id: u32,
     v2: vec3<f32>,
@@ -138,6 +152,31 @@ struct BvhNode {
     max_z: vec4<f32>,
     child: vec4<u32>,
     pad: vec4<u32>,
+}
+
+// A top-level leaf (GpuTopLeaf): a shape, or with TOP_INSTANCE an instance; key breaks ties.
+struct TopLeaf {
+    index: u32,
+    key: u32,
+}
+
+// A copy of a mesh (GpuInstance): rows of the world-to-mesh map, rows of the cofactor matrix
+// taking mesh normals to the world, where its nodes and triangles start, its material, and
+// baked = 1 when the mesh is in world space already.
+struct Instance {
+    to_mesh_x: vec4<f32>,
+    to_mesh_y: vec4<f32>,
+    to_mesh_z: vec4<f32>,
+    normal_x: vec3<f32>,
+    node_base: u32,
+    normal_y: vec3<f32>,
+    tri_base: u32,
+    normal_z: vec3<f32>,
+    material: u32,
+    baked: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // colour: albedo, reflectance, tint or radiance by kind; colour_b and checker_size > 0 for a

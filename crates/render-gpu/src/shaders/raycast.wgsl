@@ -41,7 +41,7 @@ fn cast_ray(origin: vec3<f32>, dir: vec3<f32>) -> CastHit {
     if params.triangle_count == 0u {
         return CastHit(NO_HIT, CAST_MISS);
     }
-    let hit = closest_triangle(make_ray(origin, dir), NO_HIT);
+    let hit = closest_triangle(make_ray(origin, dir), NO_HIT, 0u, 0u);
     if hit.t < NO_HIT {
         return CastHit(hit.t, hit.id);
     }

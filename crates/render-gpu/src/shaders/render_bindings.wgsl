@@ -2,6 +2,7 @@
 // the ray counters and, in the temporal mode, the pixels' geometry records.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+// The planes, then the frame's spheres and quads.
 @group(0) @binding(1) var<storage, read> shapes: array<Shape>;
 @group(0) @binding(2) var<storage, read> triangles: array<Triangle>;
 @group(0) @binding(3) var<storage, read> materials: array<Material>;
@@ -14,8 +15,12 @@
 @group(0) @binding(7) var<storage, read_write> totals: array<vec2<u32>>;
 // The tone-mapped image, one packed RGBA8 (R in the low byte) per pixel.
 @group(0) @binding(8) var<storage, read_write> srgb8: array<u32>;
-// The triangle BVH over `triangles` (empty when there are none).
+// Every mesh's triangle BVH (bottom levels), one after another (empty when there are none).
 @group(0) @binding(9) var<storage, read> bvh_nodes: array<BvhNode>;
 // In the temporal mode, two per pixel: the record's point (bits of a vec4<f32>), then its
 // normal's bits and its tag (temporal_record.wgsl).
 @group(0) @binding(10) var<storage, read_write> geometry: array<vec4<u32>>;
+// The frame's top level over its spheres, quads and instances, and its leaves in leaf order.
+@group(0) @binding(11) var<storage, read> top_nodes: array<BvhNode>;
+@group(0) @binding(12) var<storage, read> top_leaves: array<TopLeaf>;
+@group(0) @binding(13) var<storage, read> instances: array<Instance>;

@@ -44,25 +44,25 @@ fn reflect_about(v: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
     return v - k * m;
 }
 
-// The surface id of primitive `prim`: its shape index (spheres, quads, planes), or one id
-// after the shapes for every mesh triangle.
-fn surface_id(prim: u32) -> u32 {
-    return min(prim, frame.shape_count);
+// The surface id of the primitive of `hit`: its shape index (the planes, then the frame's
+// spheres and quads), or one id after the shapes for every mesh triangle.
+fn surface_id(hit: Hit) -> u32 {
+    return select(frame.shape_count, hit.prim, hit.inst == NO_INSTANCE);
 }
 
 fn tag_of(id: u32) -> u32 {
     return select(id, id | APPROX_FLAG, record_approx);
 }
 
-// A ray of the path hit primitive `prim` at t with facing normal n; the path goes on by a
-// mirror reflection (`reflects`) or through a dielectric.
-fn record_hit(t: f32, prim: u32, n: vec3<f32>, reflects: bool, dielectric: bool) {
+// A ray of the path made `hit` with facing normal n; the path goes on by a mirror
+// reflection (`reflects`) or through a dielectric.
+fn record_hit(hit: Hit, n: vec3<f32>, reflects: bool, dielectric: bool) {
     if !record_on || record_done {
         return;
     }
-    record_length += t;
+    record_length += hit.t;
     if reflects {
-        let flat = prim < frame.shape_count && shapes[prim].kind != SHAPE_SPHERE;
+        let flat = hit.inst == NO_INSTANCE && shapes[hit.prim].kind != SHAPE_SPHERE;
         record_approx = record_approx || !flat;
         record_row0 = reflect_about(record_row0, n);
         record_row1 = reflect_about(record_row1, n);
@@ -72,7 +72,7 @@ fn record_hit(t: f32, prim: u32, n: vec3<f32>, reflects: bool, dielectric: bool)
     record_approx = record_approx || dielectric;
     record_q = vec4<f32>(record_eye + record_dir * record_length, 1.0);
     record_n = vec3<f32>(dot3(record_row0, n), dot3(record_row1, n), dot3(record_row2, n));
-    record_tag = tag_of(surface_id(prim));
+    record_tag = tag_of(surface_id(hit));
     record_done = true;
 }
 

@@ -4,9 +4,10 @@
 // Like the CPU's, the box tests are widened so that the traversal finds exactly the hits of
 // a loop over all triangles, and ties at the same t go to the lowest triangle id.
 //
-// The including module declares `triangles: array<Triangle>` (in BVH leaf order) and
-// `bvh_nodes: array<BvhNode>` (node 0 the root); callers skip the queries when there are no
-// triangles.
+// The including module declares `triangles: array<Triangle>` and `bvh_nodes: array<BvhNode>`,
+// which may hold several meshes one after another: a query names where its mesh's nodes
+// (its root first) and triangles (in its BVH's leaf order) start. Callers skip the queries
+// for meshes without triangles.
 
 // Rays hit on t in (T_MIN, t_max).
 const T_MIN: f32 = 1e-4;
@@ -203,9 +204,10 @@ struct TriangleHit {
     id: u32,
 }
 
-// The nearest triangle hit on t in (T_MIN, t_max), the lowest id among hits at the same t;
+// The nearest hit on t in (T_MIN, t_max) among the triangles of the mesh whose nodes and
+// triangles start at node_base and tri_base, the lowest id among hits at the same t;
 // t = t_max when there is none (a hit exactly at t_max is not taken).
-fn closest_triangle(ray: Ray, t_max: f32) -> TriangleHit {
+fn closest_triangle(ray: Ray, t_max: f32, node_base: u32, tri_base: u32) -> TriangleHit {
     // id 0 at t_max lets no triangle tie the caller's bound.
     var best = TriangleHit(t_max, 0u, 0u);
     let sh = make_shear(ray.dir);
@@ -214,7 +216,7 @@ fn closest_triangle(ray: Ray, t_max: f32) -> TriangleHit {
     var cur = 0u;
     loop {
         if (cur & BVH_LEAF) == 0u {
-            let kids = ordered_children(bvh_nodes[cur], br, best.t);
+            let kids = ordered_children(bvh_nodes[node_base + cur], br, best.t);
             if kids.entry.x != BOX_MISS {
                 // The nearest child next; the others (a prefix of the sorted lanes) wait on
                 // the stack, the nearer on top.
@@ -238,7 +240,7 @@ fn closest_triangle(ray: Ray, t_max: f32) -> TriangleHit {
             }
         } else {
             let range = leaf_range(cur);
-            for (var k = range.x; k < range.y; k++) {
+            for (var k = tri_base + range.x; k < tri_base + range.y; k++) {
                 let tri = triangles[k];
                 let t = hit_triangle(tri, ray.origin, sh, NO_HIT);
                 if t < best.t || (t == best.t && tri.id < best.id) {
@@ -263,15 +265,15 @@ fn closest_triangle(ray: Ray, t_max: f32) -> TriangleHit {
     return best;
 }
 
-// Whether any triangle is hit on t in (T_MIN, t_max).
-fn any_triangle(ray: Ray, t_max: f32) -> bool {
+// Whether any triangle of the mesh at node_base and tri_base is hit on t in (T_MIN, t_max).
+fn any_triangle(ray: Ray, t_max: f32, node_base: u32, tri_base: u32) -> bool {
     let sh = make_shear(ray.dir);
     let br = make_box_ray(ray);
     var sp = 0u;
     var cur = 0u;
     loop {
         if (cur & BVH_LEAF) == 0u {
-            let kids = ordered_children(bvh_nodes[cur], br, t_max);
+            let kids = ordered_children(bvh_nodes[node_base + cur], br, t_max);
             if kids.entry.x != BOX_MISS {
                 if kids.entry.y != BOX_MISS {
                     if kids.entry.z != BOX_MISS {
@@ -290,7 +292,7 @@ fn any_triangle(ray: Ray, t_max: f32) -> bool {
             }
         } else {
             let range = leaf_range(cur);
-            for (var k = range.x; k < range.y; k++) {
+            for (var k = tri_base + range.x; k < tri_base + range.y; k++) {
                 if hit_triangle(triangles[k], ray.origin, sh, t_max) < t_max {
                     return true;
                 }

@@ -26,6 +26,8 @@ pub struct FrameRow {
     pub tp_ms: f64,
     /// Host wall time of the render call, ms.
     pub wall_ms: f64,
+    /// The part of Tp spent placing moving objects and updating the top-level BVH, ms.
+    pub accel_ms: f64,
     /// Rays traced (every depth and shadow rays).
     pub rays: u64,
     pub in_band: bool,
@@ -49,6 +51,7 @@ impl FrameRow {
             scale: q.scale,
             tp_ms: m.report.tp_ms,
             wall_ms: m.wall_ms,
+            accel_ms: m.accel_ms,
             rays: m.report.total_rays(),
             in_band: band.contains(m.report.tp_ms),
             flip: None,
@@ -94,7 +97,7 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
     );
     writeln!(
         out,
-        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms"
+        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms"
     )?;
     for run in runs {
         for r in &run.rows {
@@ -109,7 +112,7 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
             );
             writeln!(
                 out,
-                "{},{},{:.6},{},{},{},{:.4},{:.4},{},{},{},{:.6},{}",
+                "{},{},{:.6},{},{},{},{:.4},{:.4},{:.4},{},{},{},{:.6},{}",
                 run.name,
                 r.frame,
                 r.angle,
@@ -118,6 +121,7 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
                 r.scale,
                 r.tp_ms,
                 r.wall_ms,
+                r.accel_ms,
                 r.rays,
                 u8::from(r.in_band),
                 r.flip.map_or_else(String::new, |f| format!("{f:.6}")),

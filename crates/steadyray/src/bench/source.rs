@@ -16,6 +16,8 @@ pub struct Measured {
     pub report: FrameReport,
     /// Host wall time of the render call, ms.
     pub wall_ms: f64,
+    /// The part of Tp spent on moving objects' top-level BVH, ms.
+    pub accel_ms: f64,
     /// Camera yaw of the frame, radians.
     pub angle: f32,
 }
@@ -117,6 +119,7 @@ impl FrameSource for RendererSource {
                 speed_deg_s: 0.0,
             },
             wall_ms: stats.wall_ms,
+            accel_ms: stats.accel_ms,
             angle: (-f.x).atan2(-f.z).rem_euclid(std::f32::consts::TAU),
         })
     }
@@ -184,6 +187,7 @@ impl FrameSource for SimulatedSource {
         };
         Ok(Measured {
             wall_ms: report.tp_ms,
+            accel_ms: 0.0,
             report,
             angle: (TAU * turn) as f32,
         })

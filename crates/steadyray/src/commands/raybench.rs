@@ -32,7 +32,8 @@ use steadyray_render::sampling::{cosine_direction, pcg_hash, unit_from_hash};
 use steadyray_render_gpu::layout::GpuCastRay;
 use steadyray_render_gpu::{CastOutcome, GpuRayCaster};
 use steadyray_scene::Camera;
-use steadyray_scene::mesh_import::{MeshTransform, import_mesh};
+use steadyray_scene::Transform;
+use steadyray_scene::mesh_import::import_mesh;
 
 /// Where `raybench` traces its rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -277,7 +278,7 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
         bail!("--width, --height and --reps must be at least 1");
     }
     let start = Instant::now();
-    let imported = import_mesh(&args.mesh, &MeshTransform::default())?;
+    let imported = import_mesh(&args.mesh, &Transform::default())?;
     let load_s = start.elapsed().as_secs_f64();
     let mesh = imported.mesh;
     let corners = subdivide(

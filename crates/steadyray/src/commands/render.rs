@@ -60,6 +60,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             "depth": settings.max_depth,
             "time_s": time_s,
             "render_ms": stats.render_ms,
+            "accel_ms": stats.accel_ms,
             "wall_ms": stats.wall_ms,
             "timing": format!("{:?}", stats.timing),
             "samples": stats.samples,

@@ -851,6 +851,7 @@ mod tests {
     fn implausible_timestamps_give_way_to_the_wall_clock() {
         let stats = |render_ms, wall_ms, timing| FrameStats {
             render_ms,
+            accel_ms: 0.0,
             wall_ms,
             timing,
             rays: Default::default(),
