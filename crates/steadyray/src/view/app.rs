@@ -25,6 +25,7 @@ use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_render::{FrameStats, RenderSettings, TimingSource};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{GpuOptions, GpuRenderer, surface_adapter};
+use steadyray_scene::{Camera, CameraPath, PathMotion};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, WindowEvent};
@@ -127,6 +128,9 @@ struct Live {
     motion: MotionProbe,
     /// The camera of the last frame and when it was rendered (window time, s).
     last_shot: Option<Shot>,
+    /// A keyed camera path and the scene camera it starts from: while the sweep is on, the
+    /// camera follows it at the scene time instead of turning.
+    keyed_path: Option<(CameraPath, Camera)>,
 }
 
 /// Playback's moving parts.
@@ -370,6 +374,8 @@ impl Running {
                     speed: plan.speed,
                     scene_time_s: 0.0,
                     scene_duration_s: scene.path.duration_s(),
+                    keyed_path: matches!(scene.path.motion, PathMotion::Keys(_))
+                        .then(|| (scene.path.clone(), scene.camera)),
                     pixel_size: plan
                         .pixel_size
                         .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
@@ -576,9 +582,15 @@ impl Running {
                 if !paused {
                     live.camera.look(look);
                     live.camera.translate(movement, live.speed * dt_s);
-                    live.sweep.advance(&mut live.camera, dt_s);
                     live.scene_time_s =
                         (live.scene_time_s + f64::from(dt_s)).rem_euclid(live.scene_duration_s);
+                    match &live.keyed_path {
+                        Some((path, base)) if live.sweep.on => {
+                            let camera = path.camera_at_time(base, live.scene_time_s);
+                            live.camera = FlyCamera::from_camera(&camera);
+                        }
+                        _ => live.sweep.advance(&mut live.camera, dt_s),
+                    }
                 }
                 let q = live.control.quality();
                 let (width, height) =

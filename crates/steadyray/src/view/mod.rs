@@ -59,7 +59,8 @@ pub struct ViewArgs {
     pub present: PresentChoice,
     #[command(flatten)]
     pub bounds: BoundsArgs,
-    /// Start with the automatic sweep on (Space toggles it).
+    /// Start with the automatic sweep on (Space toggles it). On a scene whose camera flies
+    /// a keyed path (`flyby`), the sweep follows that path instead.
     #[arg(long)]
     pub sweep: bool,
     /// Seconds per full turn of the sweep.
