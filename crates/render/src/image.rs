@@ -1,6 +1,6 @@
 //! A rendered image in linear radiance.
 
-use crate::tonemap::linear_to_srgb8;
+use crate::tonemap::linear_to_srgb8_fast;
 
 /// A linear-RGB radiance image, row-major, top row first.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,7 +30,7 @@ impl Image {
     pub fn to_srgb8_rgba(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(self.pixels.len() * 4);
         for p in &self.pixels {
-            out.extend(p.iter().map(|&c| linear_to_srgb8(c)));
+            out.extend(p.iter().map(|&c| linear_to_srgb8_fast(c)));
             out.push(255);
         }
         out
