@@ -168,12 +168,16 @@ impl std::fmt::Display for RefreshBand {
     }
 }
 
-/// The median hand-over cost of `frames` frames at the path's start at quality `q`, ms.
+/// The median hand-over cost of `frames` frames at the path's start at quality `q`, ms,
+/// after as many frames not measured (the first frames' buffers are still being allocated).
 fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) -> Result<f64> {
     let mut times = Vec::new();
-    for _ in 0..frames {
+    for i in 0..2 * frames {
         source.frame(source::PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
-        times.push(source.hand_over()?.ms);
+        let ms = source.hand_over()?.ms;
+        if i >= frames {
+            times.push(ms);
+        }
     }
     steadyray_display::stats::quantile(&times, 0.5).context("no frame to measure the hand-over")
 }
@@ -310,7 +314,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         (None, _) => (Band::new(args.tmin, args.tmax)?, None),
         (Some(_), None) => bail!("--band refresh needs --clock real"),
         (Some(choice), Some(options)) => {
-            let hand_over_ms = measure_hand_over(source.as_mut(), start, args.warmup.max(5))?;
+            let hand_over_ms = measure_hand_over(source.as_mut(), start, args.warmup.max(10))?;
             let (tmin, tmax) = aligned_band(&options.display, choice.multiple, hand_over_ms)?;
             eprintln!(
                 "bench: --band {choice}: hand-over {hand_over_ms:.2} ms (median at the start quality), band [{tmin:.2}, {tmax:.2}] ms"

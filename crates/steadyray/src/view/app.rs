@@ -9,6 +9,7 @@ use super::history::{FrameHistory, Sample, Spread};
 use super::hud::{self, HudChange, HudEdit, HudFacts};
 use super::input::{Command, InputState};
 use super::live_control::LiveControl;
+use super::path_clock::PathClock;
 use super::playback::Recording;
 use super::screen::{Drawn, Screen, UiFrame};
 use super::{Content, LiveSetup, Plan};
@@ -131,6 +132,8 @@ struct Live {
     /// A keyed camera path and the scene camera it starts from: while the sweep is on, the
     /// camera follows it at the scene time instead of turning.
     keyed_path: Option<(CameraPath, Camera)>,
+    /// The scene's path, when the camera follows it (`--clock`).
+    path_clock: Option<PathClock>,
 }
 
 /// Playback's moving parts.
@@ -376,6 +379,9 @@ impl Running {
                     scene_duration_s: scene.path.duration_s(),
                     keyed_path: matches!(scene.path.motion, PathMotion::Keys(_))
                         .then(|| (scene.path.clone(), scene.camera)),
+                    path_clock: plan
+                        .clock
+                        .map(|choice| PathClock::new(choice, scene.path.clone(), scene.camera)),
                     pixel_size: plan
                         .pixel_size
                         .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
@@ -592,6 +598,10 @@ impl Running {
                         _ => live.sweep.advance(&mut live.camera, dt_s),
                     }
                 }
+                let (camera, scene_time_s) = match &mut live.path_clock {
+                    Some(clock) => clock.next(f64::from(dt_s), paused),
+                    None => (live.camera.camera(), live.scene_time_s),
+                };
                 let q = live.control.quality();
                 let (width, height) =
                     scaled(full_size(self.screen.size(), live.pixel_size), q.scale);
@@ -606,9 +616,7 @@ impl Running {
                 if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
                     return Err(anyhow!("waiting for the GPU failed: {e}"));
                 }
-                let stats =
-                    live.renderer
-                        .render(&live.camera.camera(), live.scene_time_s, &settings)?;
+                let stats = live.renderer.render(&camera, scene_time_s, &settings)?;
                 let (render_ms, source) = controller_time(&stats);
                 if source != TimingSource::GpuTimestamps
                     && self.timing.starts_with("GPU timestamps")
@@ -628,7 +636,7 @@ impl Running {
                 };
                 // The motion on screen since the last frame (outside the render's time).
                 let shot = Shot {
-                    camera: live.camera.camera(),
+                    camera,
                     time_s: t_s,
                 };
                 let motion = match live.last_shot.replace(shot) {

@@ -15,6 +15,7 @@ mod history;
 mod hud;
 mod input;
 mod live_control;
+mod path_clock;
 mod playback;
 mod present;
 mod screen;
@@ -59,6 +60,11 @@ pub struct ViewArgs {
     pub present: PresentChoice,
     #[command(flatten)]
     pub bounds: BoundsArgs,
+    /// Follow the scene's camera path instead of flying: `frames` shows one step of the path
+    /// per frame (the paper's protocol), `real` the path at each frame's predicted display
+    /// time (as `bench --clock real`).
+    #[arg(long, value_enum)]
+    pub clock: Option<crate::cli::ClockChoice>,
     /// Start with the automatic sweep on (Space toggles it). On a scene whose camera flies
     /// a keyed path (`flyby`), the sweep follows that path instead.
     #[arg(long)]
@@ -104,6 +110,7 @@ struct Plan {
     pixel_size: Option<u32>,
     present: PresentChoice,
     band: Band,
+    clock: Option<crate::cli::ClockChoice>,
     sweep: bool,
     sweep_seconds: f32,
     speed: f32,
@@ -183,6 +190,7 @@ impl Plan {
             pixel_size: args.pixel_size,
             present: args.present,
             band,
+            clock: args.clock,
             sweep: args.sweep,
             sweep_seconds: args.sweep_seconds,
             speed: args.speed,
