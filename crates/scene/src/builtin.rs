@@ -37,7 +37,7 @@ const BUILTINS: [BuiltinScene; 4] = [
     },
     BuiltinScene {
         name: "flyby",
-        description: "a moving world: objects flying between two mirror walls, a swarm of 200 \
+        description: "a moving world: objects flying between two mirror walls, a swarm of 120 \
                       appearing at 4 s and gone at 8 s, a glass ball passing the camera, \
                       camera flying a closed keyed path (12 s)",
         toml: include_str!("../builtin/flyby.toml"),
