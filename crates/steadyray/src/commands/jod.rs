@@ -1,7 +1,8 @@
 //! `steadyray jod`: what the JOD tool (`scripts/jod/jod.py`, ColorVideoVDP) measured, brought
 //! into the bench's reports. `merge` adds each run's `jod` to a real-clock bench's
 //! `summary.json` and `table.md`; `plot` draws JOD against the frames shown per second for
-//! every method of one or more benches.
+//! every method of one or more benches; `agree` says how well each cheap figure ranks those
+//! methods as JOD does.
 
 use crate::bench::report::{display_table, write_json};
 use anyhow::{Context, Result, bail};
@@ -37,6 +38,14 @@ pub enum JodCommand {
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
     },
+    /// How well each figure of merged summary.json files ranks their methods as JOD does:
+    /// Spearman's rank correlation over every scored method (1: the same order), and the
+    /// pairs of methods the displayed FLIP orders against JOD.
+    Agree {
+        /// Merged summary.json files.
+        #[arg(required = true)]
+        summaries: Vec<PathBuf>,
+    },
 }
 
 /// Runs a `jod` subcommand.
@@ -57,6 +66,14 @@ pub fn run(args: &JodArgs) -> Result<()> {
                 .concat();
             crate::bench::plot::write_jod_plot(&points, output)?;
             eprintln!("jod: wrote {}", output.display());
+            Ok(())
+        }
+        JodCommand::Agree { summaries } => {
+            let mut methods = Vec::new();
+            for path in summaries {
+                methods.extend(scored_methods(&read_json(path)?));
+            }
+            print!("{}", agreement(&methods)?);
             Ok(())
         }
     }
@@ -170,6 +187,136 @@ fn plot_points(summary: &Value) -> Result<Vec<JodPoint>> {
     Ok(points)
 }
 
+/// The figures `agree` ranks, and whether a higher value should mean a better picture.
+const RANKED: [(&str, bool); 8] = [
+    ("displayed_flip_mean", false),
+    ("displayed_flip_p95", false),
+    ("frame_flip_mean", false),
+    ("screen_age_ms_mean", false),
+    ("displayed_fps", true),
+    ("repeated_pct", false),
+    ("pacing_std_ms", false),
+    ("latency_ms_mean", false),
+];
+
+/// A scored method: its label (name and band), its JOD and its summary entry.
+struct Scored {
+    label: String,
+    jod: f64,
+    entry: Value,
+}
+
+/// The runs of a merged summary that have a JOD score, labelled with the bench's band.
+fn scored_methods(summary: &Value) -> Vec<Scored> {
+    let band = summary
+        .get("band_ms")
+        .and_then(Value::as_array)
+        .map(|b| {
+            let v: Vec<String> = b.iter().filter_map(Value::as_f64).map(|x| format!("{x:.3}")).collect();
+            v.join("-")
+        })
+        .unwrap_or_default();
+    summary
+        .get("controllers")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(|c| {
+            Some(Scored {
+                label: format!(
+                    "{} [{band}]",
+                    c.get("name").and_then(Value::as_str).unwrap_or("?")
+                ),
+                jod: c.get("jod")?.as_f64()?,
+                entry: c.clone(),
+            })
+        })
+        .collect()
+}
+
+/// Ranks of `values` (1 = smallest), ties sharing their mean rank.
+fn ranks(values: &[f64]) -> Vec<f64> {
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    let mut out = vec![0.0; values.len()];
+    let mut i = 0;
+    while i < order.len() {
+        let mut j = i;
+        while j + 1 < order.len() && values[order[j + 1]] == values[order[i]] {
+            j += 1;
+        }
+        let rank = (i + j) as f64 / 2.0 + 1.0;
+        for &k in &order[i..=j] {
+            out[k] = rank;
+        }
+        i = j + 1;
+    }
+    out
+}
+
+/// Spearman's rank correlation of two equally long lists (Pearson's of their ranks); `None`
+/// when either has no spread.
+pub fn spearman(a: &[f64], b: &[f64]) -> Option<f64> {
+    let (ra, rb) = (ranks(a), ranks(b));
+    let n = ra.len() as f64;
+    let (ma, mb) = (ra.iter().sum::<f64>() / n, rb.iter().sum::<f64>() / n);
+    let cov: f64 = ra.iter().zip(&rb).map(|(x, y)| (x - ma) * (y - mb)).sum();
+    let va: f64 = ra.iter().map(|x| (x - ma) * (x - ma)).sum();
+    let vb: f64 = rb.iter().map(|y| (y - mb) * (y - mb)).sum();
+    (va > 0.0 && vb > 0.0).then(|| cov / (va * vb).sqrt())
+}
+
+/// The agreement table: each figure's rank correlation with JOD, signed so that 1 means the
+/// figure orders the methods as JOD does; then the pairs displayed FLIP orders against JOD,
+/// the largest JOD differences first.
+fn agreement(methods: &[Scored]) -> Result<String> {
+    if methods.len() < 3 {
+        bail!("{} scored methods: rank correlations need at least 3", methods.len());
+    }
+    let jod: Vec<f64> = methods.iter().map(|m| m.jod).collect();
+    let mut out = format!(
+        "{} methods scored\n\n| figure | rank correlation with JOD |\n|---|---|\n",
+        methods.len()
+    );
+    for (key, higher_is_better) in RANKED {
+        let values: Option<Vec<f64>> = methods.iter().map(|m| m.entry.get(key)?.as_f64()).collect();
+        let rho = values.and_then(|v| spearman(&v, &jod));
+        let shown = rho.map_or_else(
+            || "-".to_string(),
+            |r| format!("{:+.3}", if higher_is_better { r } else { -r }),
+        );
+        out.push_str(&format!("| {key} | {shown} |\n"));
+    }
+    let flip: Option<Vec<f64>> = methods
+        .iter()
+        .map(|m| m.entry.get("displayed_flip_mean")?.as_f64())
+        .collect();
+    if let Some(flip) = flip {
+        let mut discordant = Vec::new();
+        for i in 0..methods.len() {
+            for j in 0..methods.len() {
+                if jod[i] > jod[j] && flip[i] > flip[j] {
+                    discordant.push((jod[i] - jod[j], i, j));
+                }
+            }
+        }
+        discordant.sort_by(|a, b| b.0.total_cmp(&a.0));
+        out.push_str(&format!(
+            "\n{} of {} pairs ordered against JOD by displayed FLIP; the widest:\n\n",
+            discordant.len(),
+            methods.len() * (methods.len() - 1) / 2
+        ));
+        out.push_str("| better by JOD | worse by JOD | JOD difference | displayed FLIP |\n|---|---|---|---|\n");
+        for (gap, i, j) in discordant.iter().take(8) {
+            out.push_str(&format!(
+                "| {} | {} | {gap:.3} | {:.4} vs {:.4} |\n",
+                methods[*i].label, methods[*j].label, flip[*i], flip[*j]
+            ));
+        }
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -203,6 +350,40 @@ mod tests {
         let path = dir.join(name);
         std::fs::write(&path, value.to_string()).unwrap();
         path
+    }
+
+    #[test]
+    fn rank_correlation_of_hand_made_lists() {
+        assert_eq!(ranks(&[3.0, 1.0, 2.0, 1.0]), [4.0, 1.5, 3.0, 1.5]);
+        let close = |a: Option<f64>, b: f64| (a.unwrap() - b).abs() < 1e-12;
+        assert!(close(spearman(&[1.0, 2.0, 3.0], &[10.0, 20.0, 30.0]), 1.0));
+        assert!(close(spearman(&[1.0, 2.0, 3.0], &[3.0, 2.0, 1.0]), -1.0));
+        // Ranks 1 2 3 4 against 1 3 2 4: 1 − 6·2/(4·15) = 0.8.
+        assert!(close(spearman(&[1.0, 2.0, 3.0, 4.0], &[1.0, 3.0, 2.0, 4.0]), 0.8));
+        assert_eq!(spearman(&[1.0, 1.0, 1.0], &[1.0, 2.0, 3.0]), None);
+    }
+
+    #[test]
+    fn agreement_ranks_each_figure_and_names_the_pairs_flip_orders_wrong() {
+        let summary = json!({
+            "band_ms": [15.0, 20.0],
+            "controllers": [
+                {"name": "a", "jod": 8.0, "displayed_flip_mean": 0.02, "displayed_fps": 60.0},
+                {"name": "b", "jod": 7.0, "displayed_flip_mean": 0.01, "displayed_fps": 30.0},
+                {"name": "c", "jod": 6.0, "displayed_flip_mean": 0.03, "displayed_fps": 20.0},
+                {"name": "unscored", "displayed_flip_mean": 0.5}
+            ]
+        });
+        let methods = scored_methods(&summary);
+        assert_eq!(methods.len(), 3);
+        let table = agreement(&methods).unwrap();
+        assert!(table.contains("| displayed_fps | +1.000 |"), "{table}");
+        // FLIP orders a (8.0) below b (7.0): one discordant pair of three.
+        assert!(table.contains("| displayed_flip_mean | +0.500 |"), "{table}");
+        assert!(table.contains("1 of 3 pairs"), "{table}");
+        assert!(table.contains("| a [15.000-20.000] | b [15.000-20.000] | 1.000 |"), "{table}");
+        assert!(table.contains("| frame_flip_mean | - |"), "{table}");
+        assert!(agreement(&methods[..2]).is_err());
     }
 
     #[test]
