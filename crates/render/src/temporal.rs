@@ -92,10 +92,19 @@ pub fn jitter(k: u32) -> [f32; 2] {
     })
 }
 
+/// `f32::floor(t)` bit for bit (−0 included) for finite |t| < 2³¹, without the call into
+/// libm that `f32::floor` is on the baseline x86-64 target (it has no rounding
+/// instruction): truncate, and step down where that rounded a negative number up.
+#[inline]
+pub fn floor(t: f32) -> f32 {
+    let i = t as i32 as f32;
+    if i > t { i - 1.0 } else { i.copysign(t) }
+}
+
 /// frac(t) = t - floor(t).
 #[inline]
 fn frac(t: f32) -> f32 {
-    t - t.floor()
+    t - floor(t)
 }
 
 /// The sub-pixel position of a sample whose frame-less position is `offset`
@@ -121,14 +130,14 @@ pub fn sample_base(k: u32) -> u32 {
 /// floor((x + anchor) · full / low).
 #[inline]
 pub fn landing(x: u32, anchor: f32, full: u32, low: u32) -> u32 {
-    ((x as f32 + anchor) * full as f32 / low as f32).floor() as u32
+    floor((x as f32 + anchor) * full as f32 / low as f32) as u32
 }
 
 /// The low-resolution column covering the centre of full-resolution column `x`:
 /// floor((x + 0.5) · low / full), at most low - 1.
 #[inline]
 pub fn covering(x: u32, full: u32, low: u32) -> u32 {
-    (((x as f32 + 0.5) * low as f32 / full as f32).floor() as u32).min(low - 1)
+    (floor((x as f32 + 0.5) * low as f32 / full as f32) as u32).min(low - 1)
 }
 
 /// The low-resolution column whose value lands in full-resolution column `x`, if any: the
@@ -307,6 +316,27 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn floor_is_exact() {
+        let values = [
+            0.0f32,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            -2.0,
+            2.999_999_8,
+            -2.999_999_8,
+        ];
+        for t in values
+            .into_iter()
+            .chain([1e7 + 0.5, -1e9, 16_777_217.0, -0.000_001])
+        {
+            assert_eq!(floor(t).to_bits(), t.floor().to_bits(), "{t}");
         }
     }
 

@@ -7,7 +7,7 @@ mod resolve;
 pub(crate) use geometry::{Geometry, GeometrySink};
 
 use rayon::prelude::*;
-use resolve::Inputs;
+use resolve::{Axis, Inputs, Prepared};
 use steadyray_render::temporal::{HistoryClock, TemporalFrame};
 use steadyray_render::{Image, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
@@ -20,6 +20,10 @@ pub(crate) struct History {
     /// The frame as rendered (its own size), then resolved into the history.
     pub low: Vec<[f32; 3]>,
     pub low_geometry: Vec<Geometry>,
+    /// What the resolve needs of each frame pixel, and of each history column and row.
+    prepared: Vec<Prepared>,
+    columns: Axis,
+    rows: Axis,
     colour: Vec<[f32; 4]>,
     geometry: Vec<Geometry>,
     next_colour: Vec<[f32; 4]>,
@@ -36,6 +40,9 @@ impl History {
             clock: HistoryClock::new(settings),
             low: Vec::new(),
             low_geometry: Vec::new(),
+            prepared: Vec::new(),
+            columns: Axis::default(),
+            rows: Axis::default(),
             colour: vec![[0.0; 4]; pixels],
             geometry: vec![Geometry::default(); pixels],
             next_colour: vec![[0.0; 4]; pixels],
@@ -49,20 +56,34 @@ impl History {
         let pixels = width as usize * height as usize;
         self.low.resize(pixels, [0.0; 3]);
         self.low_geometry.resize(pixels, Geometry::default());
+        self.prepared.resize(pixels, Prepared::default());
     }
 
     /// Accumulates the rendered frame (`low_size`, camera frame `camera` for the history's
     /// size) into the history, in parallel on the current rayon pool.
     pub fn resolve(&mut self, camera: CameraFrame, frame: TemporalFrame, low_size: (u32, u32)) {
         let settings = self.clock.settings();
+        let size = (settings.width, settings.height);
+        self.prepared
+            .par_iter_mut()
+            .zip(self.low.par_iter())
+            .zip(self.low_geometry.par_iter())
+            .with_min_len(1024)
+            .for_each(|((p, &colour), geometry)| {
+                *p = Inputs::prepare(&camera, &frame, size, colour, geometry);
+            });
+        self.columns.fill(size.0, low_size.0, frame.anchor[0]);
+        self.rows.fill(size.1, low_size.1, frame.anchor[1]);
         let inputs = Inputs {
             low: &self.low,
             low_geometry: &self.low_geometry,
+            prepared: &self.prepared,
             low_size,
+            columns: &self.columns,
+            rows: &self.rows,
             history: &self.colour,
             geometry: &self.geometry,
-            size: (settings.width, settings.height),
-            camera,
+            size,
             frame,
         };
         let width = settings.width as usize;

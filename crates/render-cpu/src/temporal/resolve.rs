@@ -1,37 +1,72 @@
 //! The per-pixel resolve of `docs/temporal.md`: find the frame's sample that lands in the
 //! pixel, reproject the history by that sample's point, keep the taps whose surface is still
 //! seen around the pixel, filter them, clamp to the frame's local colour range and blend (a
-//! still camera keeps the history as it is).
-//! Written operation for operation as `render-gpu/src/shaders/temporal.wgsl`, so both
-//! round alike.
+//! still camera keeps the history as it is). The arithmetic is `temporal.wgsl`'s operation
+//! for operation, so both round alike; what the GPU computes per history pixel the CPU
+//! computes once per frame pixel or once per row and column ([`Prepared`], [`Axis`]), which
+//! changes no result.
 
 use super::geometry::Geometry;
 use steadyray_render::temporal::{
     APPROX_FLAG, HISTORY_CAP, ID_MASK, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP, TemporalFrame,
-    catmull_rom, covering, dot3, landed_from, project,
+    catmull_rom, covering, dot3, floor, landed_from, project,
 };
 use steadyray_scene::camera::CameraFrame;
 
+/// What the resolve needs of one frame pixel besides its colour and record.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Prepared {
+    /// Where its record's point was in the previous frame minus where it is now, in history
+    /// pixels; None when either position is behind its camera.
+    motion: Option<[f32; 2]>,
+    /// Its record's point's distance from the previous eye.
+    distance: f32,
+    /// Whether its colour is finite.
+    finite: bool,
+}
+
+/// For each history column (or row): the frame column covering its centre, and the frame
+/// column landing in it (`u32::MAX` for none).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Axis {
+    covering: Vec<u32>,
+    landed: Vec<u32>,
+}
+
+impl Axis {
+    /// The table of a history axis of `full` pixels for a frame axis of `low` and `anchor`.
+    pub fn fill(&mut self, full: u32, low: u32, anchor: f32) {
+        self.covering.clear();
+        self.covering
+            .extend((0..full).map(|x| covering(x, full, low)));
+        self.landed.clear();
+        self.landed
+            .extend((0..full).map(|x| landed_from(x, anchor, full, low).unwrap_or(u32::MAX)));
+    }
+}
+
 /// Everything the resolve of one frame reads.
 pub(crate) struct Inputs<'a> {
-    /// The frame as rendered: `low_size` pixels of radiance and geometry.
+    /// The frame as rendered: `low_size` pixels of radiance and geometry, and what
+    /// [`Inputs::prepare`] made of them.
     pub low: &'a [[f32; 3]],
     pub low_geometry: &'a [Geometry],
+    pub prepared: &'a [Prepared],
     pub low_size: (u32, u32),
+    pub columns: &'a Axis,
+    pub rows: &'a Axis,
     /// The history before this frame: `size` pixels of (radiance, age) and geometry.
     pub history: &'a [[f32; 4]],
     pub geometry: &'a [Geometry],
     pub size: (u32, u32),
-    /// The camera frame of this frame (for the history's size).
-    pub camera: CameraFrame,
     pub frame: TemporalFrame,
 }
 
-/// The frame's 3×3 low-resolution pixels around a pixel: the range of their finite colours
-/// and the surfaces they see, with their points' distances from the previous eye.
+/// The frame's 3×3 pixels around a history pixel: the range of their finite colours and
+/// their indices.
 struct Neighbourhood {
     range: Option<([f32; 3], [f32; 3])>,
-    surfaces: [(Geometry, f32); 9],
+    pixels: [u32; 9],
     count: usize,
 }
 
@@ -48,56 +83,70 @@ fn distance(a: [f32; 4], b: [f32; 3]) -> f32 {
     (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
 }
 
-impl Neighbourhood {
-    /// Whether the history's surface `old` is one the neighbourhood sees: the same surface
-    /// id and, for a point, within the tolerance of its tangent plane and facing alike.
-    fn sees(&self, old: &Geometry) -> bool {
-        self.surfaces[..self.count].iter().any(|(g, d)| {
-            let off = [old.q[0] - g.q[0], old.q[1] - g.q[1], old.q[2] - g.q[2]];
-            g.tag & ID_MASK == old.tag & ID_MASK
-                && (g.q[3] == 0.0
-                    || (dot3(off, g.n).abs() <= PLANE_TOLERANCE * d
-                        && dot3(g.n, old.n) >= NORMAL_COS))
-        })
-    }
-}
-
 impl Inputs<'_> {
+    /// What the resolve needs of frame pixel `i`, given the frame's camera frame and the
+    /// history's size.
+    pub fn prepare(
+        camera: &CameraFrame,
+        frame: &TemporalFrame,
+        size: (u32, u32),
+        colour: [f32; 3],
+        geometry: &Geometry,
+    ) -> Prepared {
+        let motion = frame.previous.as_ref().and_then(|previous| {
+            let before = project(previous, geometry.q, size.0, size.1)?;
+            let now = project(camera, geometry.q, size.0, size.1)?;
+            Some([before[0] - now[0], before[1] - now[1]])
+        });
+        let eye = frame
+            .previous
+            .as_ref()
+            .map_or([0.0; 3], |p| p.eye.to_array());
+        Prepared {
+            motion,
+            distance: distance(geometry.q, eye),
+            finite: finite(colour),
+        }
+    }
+
     /// The new history and geometry of pixel (x, y).
     pub fn resolve(&self, x: u32, y: u32) -> ([f32; 4], Geometry) {
-        let (width, height) = self.size;
-        let (low_w, low_h) = self.low_size;
-        let anchor = self.frame.anchor;
-        let (cx, cy) = (covering(x, width, low_w), covering(y, height, low_h));
-        let landed =
-            landed_from(x, anchor[0], width, low_w).zip(landed_from(y, anchor[1], height, low_h));
-        let (sx, sy) = landed.unwrap_or((cx, cy));
+        let width = self.size.0;
+        let low_w = self.low_size.0;
+        let (cx, cy) = (
+            self.columns.covering[x as usize],
+            self.rows.covering[y as usize],
+        );
+        let (lx, ly) = (
+            self.columns.landed[x as usize],
+            self.rows.landed[y as usize],
+        );
+        let landed = lx != u32::MAX && ly != u32::MAX;
+        let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
         let source = (sy * low_w + sx) as usize;
         let geometry = self.low_geometry[source];
-        let current = self.low[source];
-        let current_ok = finite(current);
-        let fresh = landed.is_some() && current_ok;
+        let c = self.low[source];
+        let current_ok = self.prepared[source].finite;
+        let fresh = landed && current_ok;
 
-        let near = self.neighbourhood(cx, cy);
         let history = if self.frame.still {
             let h = self.history[(y * width + x) as usize];
             Some(([h[0], h[1], h[2]], h[3]))
-        } else {
-            self.history_at(x, y, &geometry, &near)
-                .map(|(colour, age)| {
-                    let colour = match near.range {
-                        Some((lo, hi)) => [0, 1, 2].map(|c| colour[c].max(lo[c]).min(hi[c])),
-                        None => colour,
-                    };
-                    (colour, age)
+        } else if self.frame.previous.is_some() {
+            let near = self.neighbourhood(cx, cy);
+            self.history_at(x, y, &self.prepared[source], &near)
+                .map(|(colour, age)| match near.range {
+                    Some((lo, hi)) => ([0, 1, 2].map(|i| colour[i].max(lo[i]).min(hi[i])), age),
+                    None => (colour, age),
                 })
+        } else {
+            None
         };
         let cap = if geometry.tag & APPROX_FLAG != 0 && self.frame.eye_moved {
             SPECULAR_CAP
         } else {
             HISTORY_CAP
         };
-        let c = current;
         let out = match (history, fresh) {
             (Some((h, age)), true) => {
                 let a = age.min(cap);
@@ -117,34 +166,28 @@ impl Inputs<'_> {
         (out, geometry)
     }
 
-    /// The 3×3 low-resolution pixels around (cx, cy), row by row.
+    /// The 3×3 frame pixels around (cx, cy) that lie in the frame, row by row.
     fn neighbourhood(&self, cx: u32, cy: u32) -> Neighbourhood {
         let (low_w, low_h) = self.low_size;
-        let eye = self.frame.previous.map_or([0.0; 3], |p| p.eye.to_array());
         let mut near = Neighbourhood {
             range: None,
-            surfaces: [(Geometry::default(), 0.0); 9],
+            pixels: [0; 9],
             count: 0,
         };
-        for dy in [-1i32, 0, 1] {
-            for dx in [-1i32, 0, 1] {
-                let (nx, ny) = (cx as i32 + dx, cy as i32 + dy);
-                if nx < 0 || ny < 0 || nx >= low_w as i32 || ny >= low_h as i32 {
-                    continue;
-                }
-                let i = (ny as u32 * low_w + nx as u32) as usize;
-                let g = self.low_geometry[i];
-                near.surfaces[near.count] = (g, distance(g.q, eye));
+        for ny in cy.saturating_sub(1)..=(cy + 1).min(low_h - 1) {
+            for nx in cx.saturating_sub(1)..=(cx + 1).min(low_w - 1) {
+                let i = ny * low_w + nx;
+                near.pixels[near.count] = i;
                 near.count += 1;
-                let c = self.low[i];
-                if !finite(c) {
+                if !self.prepared[i as usize].finite {
                     continue;
                 }
+                let c = self.low[i as usize];
                 near.range = Some(match near.range {
                     None => (c, c),
                     Some((lo, hi)) => (
-                        [0, 1, 2].map(|i| lo[i].min(c[i])),
-                        [0, 1, 2].map(|i| hi[i].max(c[i])),
+                        [0, 1, 2].map(|k| lo[k].min(c[k])),
+                        [0, 1, 2].map(|k| hi[k].max(c[k])),
                     ),
                 });
             }
@@ -152,25 +195,40 @@ impl Inputs<'_> {
         near
     }
 
-    /// The reprojected history of pixel (x, y) for a frame whose sample there has `geometry`:
-    /// its filtered colour and age, or None where there is none to keep.
+    /// Whether the history's surface `old` is one the neighbourhood sees: the same surface
+    /// id and, for a point, within the tolerance of its tangent plane and facing alike.
+    fn seen_nearby(&self, near: &Neighbourhood, old: &Geometry) -> bool {
+        near.pixels[..near.count].iter().any(|&i| {
+            let g = &self.low_geometry[i as usize];
+            if g.tag & ID_MASK != old.tag & ID_MASK {
+                return false;
+            }
+            if g.q[3] == 0.0 {
+                return true;
+            }
+            let off = [old.q[0] - g.q[0], old.q[1] - g.q[1], old.q[2] - g.q[2]];
+            dot3(off, g.n).abs() <= PLANE_TOLERANCE * self.prepared[i as usize].distance
+                && dot3(g.n, old.n) >= NORMAL_COS
+        })
+    }
+
+    /// The reprojected history of pixel (x, y), whose frame sample is `sample`: its filtered
+    /// colour and age, or None where there is none to keep.
     fn history_at(
         &self,
         x: u32,
         y: u32,
-        geometry: &Geometry,
+        sample: &Prepared,
         near: &Neighbourhood,
     ) -> Option<([f32; 3], f32)> {
-        let previous = self.frame.previous.as_ref()?;
         let (width, height) = self.size;
-        let before = project(previous, geometry.q, width, height)?;
-        let now = project(&self.camera, geometry.q, width, height)?;
-        let bx = x as f32 + (before[0] - now[0]);
-        let by = y as f32 + (before[1] - now[1]);
+        let motion = sample.motion?;
+        let bx = x as f32 + motion[0];
+        let by = y as f32 + motion[1];
         if !(bx >= -1.0 && bx < width as f32 && by >= -1.0 && by < height as f32) {
             return None;
         }
-        let (fx0, fy0) = (bx.floor(), by.floor());
+        let (fx0, fy0) = (floor(bx), floor(by));
         let (fx, fy) = (bx - fx0, by - fy0);
         let (ix, iy) = (fx0 as i32, fy0 as i32);
         let bilinear = [
@@ -190,8 +248,7 @@ impl Inputs<'_> {
                 continue;
             }
             let i = (ty as u32 * width + tx as u32) as usize;
-            let old = &self.geometry[i];
-            if !near.sees(old) {
+            if !self.seen_nearby(near, &self.geometry[i]) {
                 all_valid = false;
                 continue;
             }
@@ -216,13 +273,13 @@ impl Inputs<'_> {
     /// fractions (fx, fy) past (ix, iy): rows first, then the column.
     fn catmull_rom(&self, ix: i32, iy: i32, fx: f32, fy: f32) -> [f32; 3] {
         let (wx, wy) = (catmull_rom(fx), catmull_rom(fy));
-        let width = self.size.0 as i32;
+        let width = self.size.0 as usize;
+        let first = (iy - 1) as usize * width + (ix - 1) as usize;
         let mut sum = [0.0f32; 3];
         for (b, &wb) in wy.iter().enumerate() {
-            let row = (iy - 1 + b as i32) * width;
+            let row = &self.history[first + b * width..][..4];
             let mut line = [0.0f32; 3];
-            for (a, &wa) in wx.iter().enumerate() {
-                let h = self.history[(row + ix - 1 + a as i32) as usize];
+            for (h, &wa) in row.iter().zip(&wx) {
                 line = [0, 1, 2].map(|c| line[c] + wa * h[c]);
             }
             sum = [0, 1, 2].map(|c| sum[c] + wb * line[c]);

@@ -99,10 +99,9 @@ fn catmull_rom(f: f32) -> vec4<f32> {
     );
 }
 
-// The frame's 3x3 pixels around the covering one: the range of their finite colours and the
-// surfaces they see, with their points' distances from the previous eye.
-var<private> near_surfaces: array<Record, 9>;
-var<private> near_distances: array<f32, 9>;
+// The frame's 3x3 pixels around the covering one (those inside the frame, row by row): the
+// range of their finite colours and their indices.
+var<private> near_pixels: array<u32, 9>;
 var<private> near_count: u32;
 var<private> near_lo: vec3<f32>;
 var<private> near_hi: vec3<f32>;
@@ -111,18 +110,12 @@ var<private> near_has_range: bool;
 fn gather_neighbourhood(cx: u32, cy: u32) {
     near_count = 0u;
     near_has_range = false;
-    for (var dy = -1; dy <= 1; dy++) {
-        for (var dx = -1; dx <= 1; dx++) {
-            let nx = i32(cx) + dx;
-            let ny = i32(cy) + dy;
-            if nx < 0 || ny < 0 || nx >= i32(params.low_width) || ny >= i32(params.low_height) {
-                continue;
-            }
-            let i = u32(ny) * params.low_width + u32(nx);
-            let g = frame_record(i);
-            let d = g.q.xyz - params.previous.eye;
-            near_surfaces[near_count] = g;
-            near_distances[near_count] = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    let y_end = min(cy + 1u, params.low_height - 1u);
+    let x_end = min(cx + 1u, params.low_width - 1u);
+    for (var ny = max(cy, 1u) - 1u; ny <= y_end; ny++) {
+        for (var nx = max(cx, 1u) - 1u; nx <= x_end; nx++) {
+            let i = ny * params.low_width + nx;
+            near_pixels[near_count] = i;
             near_count += 1u;
             let c = frame_image[i].xyz;
             if !finite3(c) {
@@ -140,19 +133,22 @@ fn gather_neighbourhood(cx: u32, cy: u32) {
     }
 }
 
-// Whether the history's surface `old` is one the neighbourhood sees.
+// Whether the history's surface `old` is one the neighbourhood sees: the same surface id and,
+// for a point, within the tolerance of its tangent plane (PLANE_TOLERANCE times its distance
+// from the previous eye) and facing alike.
 fn seen_nearby(old: Record) -> bool {
-    for (var i = 0u; i < near_count; i++) {
-        let g = near_surfaces[i];
+    for (var k = 0u; k < near_count; k++) {
+        let g = frame_record(near_pixels[k]);
         if (g.tag & ID_MASK) != (old.tag & ID_MASK) {
             continue;
         }
         if g.q.w == 0.0 {
             return true;
         }
+        let e = g.q.xyz - params.previous.eye;
+        let d = sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
         let off = old.q.xyz - g.q.xyz;
-        if abs(dot3(off, g.n)) <= PLANE_TOLERANCE * near_distances[i]
-            && dot3(g.n, old.n) >= NORMAL_COS {
+        if abs(dot3(off, g.n)) <= PLANE_TOLERANCE * d && dot3(g.n, old.n) >= NORMAL_COS {
             return true;
         }
     }
@@ -270,13 +266,13 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
     let current_ok = finite3(c);
     let fresh = landed && current_ok;
 
-    gather_neighbourhood(cx, cy);
     let pixel = y * params.width + x;
     var kept = Kept(false, vec3<f32>(0.0), 0.0);
     if params.still != 0u {
         let h = history_in[pixel];
         kept = Kept(true, h.xyz, h.w);
     } else if params.has_history != 0u {
+        gather_neighbourhood(cx, cy);
         kept = history_at(x, y, g.q);
         if kept.valid && near_has_range {
             kept.colour = min(max(kept.colour, near_lo), near_hi);
