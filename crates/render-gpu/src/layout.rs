@@ -593,6 +593,7 @@ mod tests {
         }
         let floats = [
             ("HISTORY_CAP", temporal::HISTORY_CAP),
+            ("STILL_CAP", temporal::STILL_CAP),
             ("SPECULAR_CAP", temporal::SPECULAR_CAP),
             ("PLANE_TOLERANCE", temporal::PLANE_TOLERANCE),
             ("NORMAL_COS", temporal::NORMAL_COS),

@@ -8,8 +8,8 @@
 
 use super::geometry::Geometry;
 use steadyray_render::temporal::{
-    APPROX_FLAG, HISTORY_CAP, ID_MASK, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP, TemporalFrame,
-    catmull_rom, covering, dot3, floor, landed_from, project,
+    APPROX_FLAG, HISTORY_CAP, ID_MASK, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP, STILL_CAP,
+    TemporalFrame, catmull_rom, covering, dot3, floor, landed_from, project,
 };
 use steadyray_scene::camera::CameraFrame;
 
@@ -142,7 +142,9 @@ impl Inputs<'_> {
         } else {
             None
         };
-        let cap = if geometry.tag & APPROX_FLAG != 0 && self.frame.eye_moved {
+        let cap = if self.frame.still {
+            STILL_CAP
+        } else if geometry.tag & APPROX_FLAG != 0 && self.frame.eye_moved {
             SPECULAR_CAP
         } else {
             HISTORY_CAP

@@ -279,7 +279,9 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
     }
     var cap = HISTORY_CAP;
-    if (g.tag & APPROX_FLAG) != 0u && params.eye_moved != 0u {
+    if params.still != 0u {
+        cap = STILL_CAP;
+    } else if (g.tag & APPROX_FLAG) != 0u && params.eye_moved != 0u {
         cap = SPECULAR_CAP;
     }
     var out = vec4<f32>(0.0);
