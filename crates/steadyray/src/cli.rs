@@ -165,6 +165,22 @@ pub struct RenderArgs {
     /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance).
     #[arg(short = 'o', long = "output", default_value = "render.png")]
     pub output: PathBuf,
+    /// The temporal mode (docs/temporal.md): render a sequence of FRAMES frames ending at the
+    /// asked view, 1/--rate s apart on the camera path (the same view for --yaw or the
+    /// scene's camera), accumulate them into a --width x --height history and write it.
+    #[arg(long, value_name = "FRAMES")]
+    pub temporal: Option<u32>,
+    /// With --temporal: the resolution scale each frame is rendered at (the history stays at
+    /// --width x --height: temporal upsampling).
+    #[arg(long, default_value_t = 1.0, requires = "temporal")]
+    pub scale: f32,
+    /// With --temporal: frames per second of the sequence.
+    #[arg(long, default_value_t = 60.0, requires = "temporal")]
+    pub rate: f64,
+    /// With --temporal: also write the history after every frame into DIR
+    /// (frame_0000.png, frame_0001.png, ...).
+    #[arg(long, value_name = "DIR", requires = "temporal")]
+    pub sequence: Option<PathBuf>,
 }
 
 /// How time runs (`spec/display.md`).

@@ -1,75 +1,163 @@
-//! `steadyray render`: one still image.
+//! `steadyray render`: one still image, or with `--temporal` the history of a sequence.
 
 use crate::backend::create_renderer;
 use crate::cli::RenderArgs;
 use crate::image_out::{image_format, save_image};
 use anyhow::{Context, Result, bail};
 use serde_json::json;
-use steadyray_render::RenderSettings;
-use steadyray_scene::Camera;
+use steadyray_render::{RenderSettings, TemporalSettings};
+use steadyray_scene::{Camera, Scene};
 
-/// Renders the asked-for frame, writes the image, and prints the frame's statistics.
+/// Where the asked-for view comes from: a fixed camera, or the scene's path at a time.
+enum View {
+    Fixed(Camera),
+    Path,
+}
+
+/// The frames of a `--temporal` sequence (one frame without it): `frames` frames `1/rate`
+/// seconds apart, the last at `end_s`.
+struct Sequence {
+    frames: u32,
+    rate: f64,
+    end_s: f64,
+}
+
+impl Sequence {
+    /// The scene time of frame `i`.
+    fn time(&self, i: u32) -> f64 {
+        self.end_s - f64::from(self.frames - 1 - i) / self.rate
+    }
+}
+
+/// Renders the asked-for frame (or sequence), writes the image, and prints the last frame's
+/// statistics.
 pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = args.scene.load()?;
-    let settings = RenderSettings {
+    let full = RenderSettings {
         width: args.width,
         height: args.height,
         spp: args.spp,
         max_depth: args.depth,
     };
-    settings.validate()?;
+    full.validate()?;
     image_format(&args.output)?;
     if let Some(t) = args.time
         && !t.is_finite()
     {
         bail!("--time {t} is not a finite number of seconds");
     }
-    let (camera, time_s) = match (args.yaw, args.frame, args.time) {
+    let (view, time_s) = match (args.yaw, args.frame, args.time) {
         (Some(yaw), _, time) => {
             let pitch = scene.camera.forward.normalize().y.clamp(-1.0, 1.0).asin();
             let camera = Camera::yaw_pitch(scene.camera.eye, yaw, pitch, scene.camera.vfov_deg);
-            (camera, time.unwrap_or(0.0))
+            (View::Fixed(camera), time.unwrap_or(0.0))
         }
         (None, Some(k), _) => {
             let n = args.frames.unwrap_or_else(|| scene.path.frames());
             if n == 0 || k >= n {
                 bail!("--frame {k} is outside a path of {n} frames");
             }
-            (scene.camera_at(k, n), scene.path.frame_time(k, n))
+            (View::Path, scene.path.frame_time(k, n))
         }
-        (None, None, Some(t)) => (scene.camera_at_time(t), t),
-        (None, None, None) => (scene.camera, 0.0),
+        (None, None, Some(t)) => (View::Path, t),
+        (None, None, None) => (View::Fixed(scene.camera), 0.0),
+    };
+    let camera_at = |t: f64| match &view {
+        View::Fixed(camera) => *camera,
+        View::Path => scene.camera_at_time(t),
+    };
+    let sequence = match args.temporal {
+        None => Sequence {
+            frames: 1,
+            rate: 1.0,
+            end_s: time_s,
+        },
+        Some(0) => bail!("--temporal needs at least 1 frame"),
+        Some(frames) => {
+            if !(args.rate.is_finite() && args.rate > 0.0) {
+                bail!(
+                    "--rate {} is not a positive number of frames per second",
+                    args.rate
+                );
+            }
+            if !(args.scale > 0.0 && args.scale <= 1.0) {
+                bail!("--scale {} is outside (0, 1]", args.scale);
+            }
+            Sequence {
+                frames,
+                rate: args.rate,
+                end_s: time_s,
+            }
+        }
+    };
+    let side = |v: u32| ((v as f32 * args.scale).round() as u32).max(1);
+    let settings = RenderSettings {
+        width: side(full.width),
+        height: side(full.height),
+        ..full
     };
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
-    for _ in 0..args.warmup {
-        renderer.render(&camera, time_s, &settings)?;
+    if args.temporal.is_some() {
+        renderer.set_temporal(Some(TemporalSettings {
+            width: full.width,
+            height: full.height,
+        }))?;
     }
-    let stats = renderer.render(&camera, time_s, &settings)?;
+    let first = sequence.time(0);
+    for _ in 0..args.warmup {
+        renderer.render(&camera_at(first), first, &settings)?;
+    }
+    renderer.reset_history();
+    if let Some(dir) = &args.sequence {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let mut stats = None;
+    for i in 0..sequence.frames {
+        let t = sequence.time(i);
+        stats = Some(renderer.render(&camera_at(t), t, &settings)?);
+        if let Some(dir) = &args.sequence {
+            let path = dir.join(format!("frame_{i:04}.png"));
+            save_image(&renderer.read_image()?, &path)?;
+        }
+    }
+    let stats = stats.context("no frame rendered")?;
     let image = renderer.read_image()?;
     save_image(&image, &args.output).with_context(|| format!("rendering {} failed", scene.name))?;
     if args.stats {
-        let info = renderer.info();
-        let line = json!({
-            "scene": scene.name,
-            "backend": info.backend,
-            "device": info.device,
-            "width": stats.width,
-            "height": stats.height,
-            "spp": settings.spp,
-            "depth": settings.max_depth,
-            "time_s": time_s,
-            "render_ms": stats.render_ms,
-            "accel_ms": stats.accel_ms,
-            "wall_ms": stats.wall_ms,
-            "timing": format!("{:?}", stats.timing),
-            "samples": stats.samples,
-            "rays_per_depth": stats.rays.per_depth,
-            "shadow_rays": stats.rays.shadow,
-            "rays_total": stats.rays.total(),
-            "rays_per_s": stats.rays_per_second(),
-        });
-        println!("{line}");
+        print_stats(&scene, renderer.info(), &settings, &stats, time_s, args);
     }
     Ok(())
+}
+
+/// Prints the last frame's statistics as one JSON line.
+fn print_stats(
+    scene: &Scene,
+    info: steadyray_render::BackendInfo,
+    settings: &RenderSettings,
+    stats: &steadyray_render::FrameStats,
+    time_s: f64,
+    args: &RenderArgs,
+) {
+    let line = json!({
+        "scene": scene.name,
+        "backend": info.backend,
+        "device": info.device,
+        "width": stats.width,
+        "height": stats.height,
+        "spp": settings.spp,
+        "depth": settings.max_depth,
+        "time_s": time_s,
+        "temporal_frames": args.temporal,
+        "render_ms": stats.render_ms,
+        "accel_ms": stats.accel_ms,
+        "wall_ms": stats.wall_ms,
+        "timing": format!("{:?}", stats.timing),
+        "samples": stats.samples,
+        "rays_per_depth": stats.rays.per_depth,
+        "shadow_rays": stats.rays.shadow,
+        "rays_total": stats.rays.total(),
+        "rays_per_s": stats.rays_per_second(),
+    });
+    println!("{line}");
 }
