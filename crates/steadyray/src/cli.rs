@@ -194,6 +194,29 @@ pub enum ClockChoice {
     Real,
 }
 
+/// Which runs use the temporal mode (`docs/temporal.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TemporalChoice {
+    /// None.
+    Off,
+    /// Every run.
+    On,
+    /// Every controller runs twice: without, then with it.
+    Both,
+}
+
+impl TemporalChoice {
+    /// The modes each controller runs in, in order (false: without it).
+    pub fn modes(self) -> &'static [bool] {
+        match self {
+            TemporalChoice::Off => &[false],
+            TemporalChoice::On => &[true],
+            TemporalChoice::Both => &[false, true],
+        }
+    }
+}
+
 /// On or off.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Switch {

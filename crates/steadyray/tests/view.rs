@@ -156,43 +156,45 @@ const WINDOW: (u32, u32) = (640, 360);
 const PIXEL: u32 = 4;
 
 /// Runs `view --frames 30 --screenshot` on `backend` and checks the screenshot against a
-/// `render` of the same view.
-fn window_matches_render(backend: &str) {
+/// `render` of the same view; with `temporal`, both accumulate the 30 frames of the still
+/// view (`view --temporal`, `render --temporal 30`) and must agree as well.
+fn window_matches_render(backend: &str, temporal: bool) {
     let xvfb = match Xvfb::start() {
         Ok(x) => x,
         Err(why) => skip!("no X server for the window test: {why}"),
     };
-    let dir = scratch(backend);
+    let dir = scratch(&format!("{backend}-{temporal}"));
     let shot = dir.join("view.png");
     let reference = dir.join("render.png");
     let (w, h) = (WINDOW.0.to_string(), WINDOW.1.to_string());
     let pixel = PIXEL.to_string();
-    let view = run(
-        Some(&xvfb.display),
-        &[
-            "view",
-            "--scene",
-            "corridor",
-            "--backend",
-            backend,
-            "--controller",
-            "fixed",
-            "--spp-min",
-            "1",
-            "--depth-max",
-            "6",
-            "--width",
-            &w,
-            "--height",
-            &h,
-            "--pixel-size",
-            &pixel,
-            "--frames",
-            "30",
-            "--screenshot",
-            shot.to_str().unwrap(),
-        ],
-    );
+    let mut view_args = vec![
+        "view",
+        "--scene",
+        "corridor",
+        "--backend",
+        backend,
+        "--controller",
+        "fixed",
+        "--spp-min",
+        "1",
+        "--depth-max",
+        "6",
+        "--width",
+        &w,
+        "--height",
+        &h,
+        "--pixel-size",
+        &pixel,
+        "--frames",
+        "30",
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ];
+    if temporal {
+        view_args.push("--temporal");
+    }
+    let view = run(Some(&xvfb.display), &view_args);
     let stderr = text(&view.stderr);
     assert!(!stderr.contains("panicked"), "the view panicked:\n{stderr}");
     if !view.status.success() && backend == "gpu" && stderr.contains("no GPU adapter") {
@@ -225,26 +227,27 @@ fn window_matches_render(backend: &str) {
         "{summary}"
     );
 
-    let render = run(
-        None,
-        &[
-            "render",
-            "--scene",
-            "corridor",
-            "--backend",
-            backend,
-            "--width",
-            "160",
-            "--height",
-            "90",
-            "--spp",
-            "1",
-            "--depth",
-            "6",
-            "-o",
-            reference.to_str().unwrap(),
-        ],
-    );
+    let mut render_args = vec![
+        "render",
+        "--scene",
+        "corridor",
+        "--backend",
+        backend,
+        "--width",
+        "160",
+        "--height",
+        "90",
+        "--spp",
+        "1",
+        "--depth",
+        "6",
+        "-o",
+        reference.to_str().unwrap(),
+    ];
+    if temporal {
+        render_args.extend(["--temporal", "30"]);
+    }
+    let render = run(None, &render_args);
     assert!(
         render.status.success(),
         "render failed:\n{}",
@@ -306,12 +309,22 @@ fn window_matches_render(backend: &str) {
 
 #[test]
 fn gpu_window_shows_the_scene_and_the_hud() {
-    window_matches_render("gpu");
+    window_matches_render("gpu", false);
 }
 
 #[test]
 fn cpu_window_shows_the_scene_and_the_hud() {
-    window_matches_render("cpu");
+    window_matches_render("cpu", false);
+}
+
+#[test]
+fn gpu_window_shows_the_temporal_history() {
+    window_matches_render("gpu", true);
+}
+
+#[test]
+fn cpu_window_shows_the_temporal_history() {
+    window_matches_render("cpu", true);
 }
 
 #[test]

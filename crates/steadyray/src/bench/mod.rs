@@ -26,7 +26,7 @@ mod source;
 mod video;
 
 use crate::backend::create_renderer;
-use crate::cli::{BoundsArgs, ClockChoice, DisplayArgs, SceneArgs};
+use crate::cli::{BoundsArgs, ClockChoice, DisplayArgs, SceneArgs, TemporalChoice};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use displayed::{TimedReferences, screen_samples, time_key};
@@ -128,6 +128,17 @@ pub struct BenchArgs {
     pub duration: Option<f64>,
     #[command(flatten)]
     pub display: DisplayArgs,
+    /// The temporal mode (docs/temporal.md): `off`, `on` (every run accumulates its frames
+    /// into a full-resolution history, the pass inside Tp), or `both` (every controller runs
+    /// without, then with it, labelled "+temporal"). `--temporal` alone means `on`.
+    #[arg(
+        long,
+        value_enum,
+        default_value_t = TemporalChoice::Off,
+        num_args = 0..=1,
+        default_missing_value = "on"
+    )]
+    pub temporal: TemporalChoice,
     /// With --clock real: write the screen of every run and the reference at every refresh
     /// into DIR (lossless PNG sequences, timings.csv, a video each, video.json) for the JOD
     /// tool (scripts/jod/). References already in DIR/reference for the same set-up are
@@ -273,6 +284,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         bail!("--frames must be at least 1");
     }
     let real = real_options(args)?;
+    if args.simulate && args.temporal != TemporalChoice::Off {
+        bail!("--temporal needs a renderer (not --simulate)");
+    }
     let specs = parse_controllers(&args.controllers)?;
     let build = |band: Band| -> Result<(Setup, Vec<Box<dyn Controller>>)> {
         let setup =
@@ -374,7 +388,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         Some(r) => (r.duration_s * 1000.0) as u64,
     };
     let unit = if real.is_some() { "ms shown" } else { "frames" };
-    let progress = ProgressBar::new(per_run * specs.len() as u64);
+    let modes = args.temporal.modes();
+    let progress = ProgressBar::new(per_run * (specs.len() * modes.len()) as u64);
     progress.set_style(
         ProgressStyle::with_template(&format!(
             "{{bar:40}} {{pos}}/{{len}} {unit}, {{msg}} [{{elapsed}}]"
@@ -388,6 +403,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         1.0,
     );
     let references = if args.quality && real.is_none() {
+        source.set_temporal(false)?;
         let every = args.every.max(1);
         progress.inc_length(args.frames.div_ceil(every) as u64);
         progress.set_message("references");
@@ -414,8 +430,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     } else {
         measured
     };
-    let run_count =
-        specs.len() + usize::from(!args.no_best_fixed && specs.iter().any(|s| s.name == "fixed"));
+    let run_count = modes.len()
+        * (specs.len()
+            + usize::from(!args.no_best_fixed && specs.iter().any(|s| s.name == "fixed")));
     let mut video_runs = Vec::new();
     // Encodes a finished run's frames (between runs, never during one) and frees those no
     // longer needed.
@@ -462,35 +479,44 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
     };
     let mut runs: Vec<ControllerRun> = Vec::new();
-    // The best fixed quality runs once, after the first fixed one.
-    let mut best_fixed_due = !args.no_best_fixed;
+    // The best fixed quality runs once per temporal mode, after the first fixed one.
+    let mut best_fixed_due = vec![!args.no_best_fixed; modes.len()];
     for (spec, controller) in &mut controllers {
         let label = match (spec.name.as_str(), spec.options.is_empty()) {
             ("fixed", _) => format!("fixed {}", quality_label(&controller.quality(), &bounds)),
             (name, true) => name.to_string(),
             (name, false) => format!("{name} {}", spec.options.replace(',', "+")),
         };
-        runs.push(keep(run_one(
-            source.as_mut(),
-            controller.as_mut(),
-            &label,
-        )?)?);
-        if spec.name == "fixed" && best_fixed_due {
-            best_fixed_due = false;
-            progress.inc_length(per_run);
-            let best = search_best_fixed(source.as_mut(), &sweep, args.search_views, &progress)?;
-            let mut fixed = from_name(
-                "fixed",
-                Setup {
-                    start: best,
-                    ..setup
-                },
-                "",
-            )?;
-            let label = format!("best fixed {}", quality_label(&best, &bounds));
-            runs.push(keep(run_one(source.as_mut(), fixed.as_mut(), &label)?)?);
+        for (&temporal, best_due) in modes.iter().zip(&mut best_fixed_due) {
+            let suffix = if temporal { " +temporal" } else { "" };
+            source.set_temporal(temporal)?;
+            let label = format!("{label}{suffix}");
+            runs.push(keep(run_one(
+                source.as_mut(),
+                controller.as_mut(),
+                &label,
+            )?)?);
+            if spec.name == "fixed" && *best_due {
+                *best_due = false;
+                progress.inc_length(per_run);
+                let best =
+                    search_best_fixed(source.as_mut(), &sweep, args.search_views, &progress)?;
+                let mut fixed = from_name(
+                    "fixed",
+                    Setup {
+                        start: best,
+                        ..setup
+                    },
+                    "",
+                )?;
+                let label = format!("best fixed {}{suffix}", quality_label(&best, &bounds));
+                source.set_temporal(temporal)?;
+                runs.push(keep(run_one(source.as_mut(), fixed.as_mut(), &label)?)?);
+            }
         }
     }
+    // References are plain frames.
+    source.set_temporal(false)?;
     if let Some(r) = &real {
         let period = r.display.period_ms();
         let refreshes = refresh_at_or_after(r.duration_s * 1000.0, period) as usize;
@@ -579,6 +605,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         start: start.to_string(),
         git_revision: machine::git_revision(),
         clock: if real.is_some() { "real" } else { "frames" },
+        temporal: args.temporal,
         real: real.as_ref().map(|r| RealContext {
             duration_s: r.duration_s,
             display: r.display,

@@ -29,6 +29,9 @@ pub struct RunContext {
     pub git_revision: String,
     /// `frames` or `real`.
     pub clock: &'static str,
+    /// Which runs used the temporal mode (`off`, `on` or `both`; those that did are
+    /// labelled "+temporal").
+    pub temporal: crate::cli::TemporalChoice,
     /// The real clock's display and viewing set-up.
     #[serde(flatten)]
     pub real: Option<RealContext>,

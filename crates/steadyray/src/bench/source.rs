@@ -1,13 +1,13 @@
 //! Where the experiment's frames come from: a real renderer over the scene's camera path, or
 //! the control crate's simulated renderer on a fake clock (`bench --simulate`).
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use std::f64::consts::TAU;
 use std::time::Instant;
 use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Image, RenderSettings, Renderer};
+use steadyray_render::{Image, RenderSettings, Renderer, TemporalSettings};
 use steadyray_scene::Scene;
 
 /// One rendered (or simulated) frame as the experiment sees it.
@@ -60,6 +60,9 @@ pub trait FrameSource {
     /// The linear image of the last frame (read back outside any timing), or `None` for a
     /// source without images (the simulated renderer).
     fn last_image(&mut self) -> Result<Option<Image>>;
+    /// Turns the temporal mode on (a new history at the full-scale size: every frame is
+    /// accumulated into it) or off.
+    fn set_temporal(&mut self, on: bool) -> Result<()>;
 }
 
 /// The simulated renderer's hand-over cost, ms.
@@ -142,6 +145,14 @@ impl FrameSource for RendererSource {
     fn last_image(&mut self) -> Result<Option<Image>> {
         Ok(Some(self.renderer.read_image()?))
     }
+
+    fn set_temporal(&mut self, on: bool) -> Result<()> {
+        let history = TemporalSettings {
+            width: self.width,
+            height: self.height,
+        };
+        Ok(self.renderer.set_temporal(on.then_some(history))?)
+    }
 }
 
 /// Frames from the simulated renderer: a cost model driven by the corridor-shaped load.
@@ -206,6 +217,13 @@ impl FrameSource for SimulatedSource {
 
     fn last_image(&mut self) -> Result<Option<Image>> {
         Ok(None)
+    }
+
+    fn set_temporal(&mut self, on: bool) -> Result<()> {
+        if on {
+            bail!("the simulated renderer has no temporal mode (--temporal needs a renderer)");
+        }
+        Ok(())
     }
 }
 

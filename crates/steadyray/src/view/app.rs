@@ -23,7 +23,7 @@ use std::time::Instant;
 use steadyray_control::{Band, FrameReport};
 use steadyray_display::ViewingSetup;
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
-use steadyray_render::{FrameStats, RenderSettings, TimingSource};
+use steadyray_render::{FrameStats, RenderSettings, TemporalSettings, TimingSource};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{GpuOptions, GpuRenderer, surface_adapter};
 use steadyray_scene::{Camera, CameraPath, PathMotion};
@@ -134,6 +134,24 @@ struct Live {
     keyed_path: Option<(CameraPath, Camera)>,
     /// The scene's path, when the camera follows it (`--clock`).
     path_clock: Option<PathClock>,
+    /// Whether frames accumulate into a history (`docs/temporal.md`), and the size the
+    /// renderer's history has (None: off).
+    temporal: bool,
+    history: Option<(u32, u32)>,
+}
+
+impl Live {
+    /// Gives the renderer the history the temporal mode asks for: `full` pixels (a resize
+    /// starts a new one), or none.
+    fn sync_history(&mut self, full: (u32, u32)) -> Result<()> {
+        let want = self.temporal.then_some(full);
+        if want != self.history {
+            let settings = want.map(|(width, height)| TemporalSettings { width, height });
+            self.renderer.set_temporal(settings)?;
+            self.history = want;
+        }
+        Ok(())
+    }
 }
 
 /// Playback's moving parts.
@@ -385,6 +403,8 @@ impl Running {
                     pixel_size: plan
                         .pixel_size
                         .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
+                    temporal: plan.temporal,
+                    history: None,
                 };
                 let mode = Mode::Live(Box::new(live));
                 (
@@ -452,6 +472,7 @@ impl Running {
                 tmax_ms: plan.band.tmax_ms(),
                 bounds,
                 sweep: plan.sweep,
+                temporal: plan.temporal,
                 paused: false,
             },
             window,
@@ -523,6 +544,7 @@ impl Running {
                 Mode::Playback(p) => p.restart(),
             },
             Command::TogglePause => self.apply(HudChange::Pause(!self.paused)),
+            Command::ToggleTemporal => self.apply(HudChange::Temporal(!self.hud_edit.temporal)),
             Command::Screenshot => self.shot_requested = true,
             Command::Quit => return Flow::Exit,
         }
@@ -538,6 +560,10 @@ impl Running {
             }
             (Mode::Live(live), HudChange::Sweep(on)) => {
                 live.sweep.on = on;
+                Ok(())
+            }
+            (Mode::Live(live), HudChange::Temporal(on)) => {
+                live.temporal = on;
                 Ok(())
             }
             (Mode::Live(live), HudChange::Controller(name)) => live.control.set_controller(name),
@@ -563,6 +589,7 @@ impl Running {
                 self.hud_edit.controller = live.control.name();
                 self.hud_edit.bounds = live.control.bounds();
                 self.hud_edit.sweep = live.sweep.on;
+                self.hud_edit.temporal = live.temporal;
             }
             Mode::Playback(_) => {
                 if let Ok(band) = Band::new(self.hud_edit.tmin_ms, self.hud_edit.tmax_ms) {
@@ -603,8 +630,9 @@ impl Running {
                     None => (live.camera.camera(), live.scene_time_s),
                 };
                 let q = live.control.quality();
-                let (width, height) =
-                    scaled(full_size(self.screen.size(), live.pixel_size), q.scale);
+                let full = full_size(self.screen.size(), live.pixel_size);
+                live.sync_history(full)?;
+                let (width, height) = scaled(full, q.scale);
                 let settings = RenderSettings {
                     width,
                     height,

@@ -3,7 +3,7 @@
 //! playback's PNGs are uploaded into one each frame.
 
 use anyhow::Result;
-use steadyray_render::{FrameStats, RenderSettings, Renderer};
+use steadyray_render::{FrameStats, RenderSettings, Renderer, TemporalSettings};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{DisplayImage, GpuRenderer};
 use steadyray_scene::{Camera, Scene};
@@ -88,6 +88,11 @@ impl LiveRenderer {
     /// Prepares `scene`.
     pub fn load_scene(&mut self, scene: &Scene) -> Result<()> {
         Ok(self.renderer().load_scene(scene)?)
+    }
+
+    /// Turns the temporal mode on with a new history, or off.
+    pub fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<()> {
+        Ok(self.renderer().set_temporal(temporal)?)
     }
 
     /// Renders one frame of the scene at scene time `time_s`.

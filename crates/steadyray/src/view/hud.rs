@@ -21,6 +21,8 @@ pub struct HudEdit {
     pub bounds: Bounds,
     pub sweep: bool,
     pub paused: bool,
+    /// The temporal mode (`docs/temporal.md`).
+    pub temporal: bool,
 }
 
 /// One edit the view applies at the next frame.
@@ -31,6 +33,7 @@ pub enum HudChange {
     Bounds(Bounds),
     Sweep(bool),
     Pause(bool),
+    Temporal(bool),
 }
 
 impl HudEdit {
@@ -54,6 +57,9 @@ impl HudEdit {
         }
         if self.paused != before.paused {
             changes.push(HudChange::Pause(self.paused));
+        }
+        if self.temporal != before.temporal {
+            changes.push(HudChange::Temporal(self.temporal));
         }
         changes
     }
@@ -97,7 +103,9 @@ pub fn show(ctx: &egui::Context, edit: &mut HudEdit, facts: &HudFacts<'_>) -> Op
         if let Some(message) = facts.message {
             ui.colored_label(Color32::from_rgb(255, 120, 100), message);
         }
-        ui.small("F1 HUD · Space sweep · P pause · F12 shot\ndrag: look · WASD/QE: move");
+        ui.small(
+            "F1 HUD · Space sweep · P pause · T temporal · F12 shot\ndrag: look · WASD/QE: move",
+        );
     })?;
     Some(response.response.rect)
 }
@@ -222,7 +230,7 @@ fn figures(ui: &mut egui::Ui, facts: &HudFacts<'_>) {
     });
 }
 
-/// The controller, band, bounds, sweep and pause controls.
+/// The controller, band, bounds, sweep, pause and temporal controls.
 fn controls(ui: &mut egui::Ui, edit: &mut HudEdit, playback: bool) {
     if !playback {
         egui::ComboBox::from_label("controller")
@@ -267,6 +275,9 @@ fn controls(ui: &mut egui::Ui, edit: &mut HudEdit, playback: bool) {
             ui.checkbox(&mut edit.sweep, "sweep");
         }
         ui.checkbox(&mut edit.paused, "pause");
+        if !playback {
+            ui.checkbox(&mut edit.temporal, "temporal");
+        }
     });
 }
 
@@ -283,6 +294,7 @@ mod tests {
             bounds: Bounds::default(),
             sweep: false,
             paused: false,
+            temporal: false,
         }
     }
 
@@ -296,6 +308,7 @@ mod tests {
         after.bounds.depth_max = 4;
         after.sweep = true;
         after.paused = true;
+        after.temporal = true;
         let bounds = Bounds {
             depth_max: 4,
             ..Bounds::default()
@@ -311,6 +324,7 @@ mod tests {
                 HudChange::Bounds(bounds),
                 HudChange::Sweep(true),
                 HudChange::Pause(true),
+                HudChange::Temporal(true),
             ]
         );
     }

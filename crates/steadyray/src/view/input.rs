@@ -47,6 +47,8 @@ pub enum Command {
     ToggleSweep,
     /// P: freeze or resume the camera (and playback).
     TogglePause,
+    /// T: turn the temporal mode on or off.
+    ToggleTemporal,
     /// F12: save a screenshot PNG.
     Screenshot,
     /// Escape: close the view.
@@ -73,6 +75,7 @@ fn binding(code: KeyCode) -> Option<Binding> {
         KeyCode::F1 => C(Command::ToggleHud),
         KeyCode::Space => C(Command::ToggleSweep),
         KeyCode::KeyP => C(Command::TogglePause),
+        KeyCode::KeyT => C(Command::ToggleTemporal),
         KeyCode::F12 => C(Command::Screenshot),
         KeyCode::Escape => C(Command::Quit),
         _ => return None,

@@ -78,6 +78,10 @@ pub struct ViewArgs {
     /// Start with the HUD hidden (F1 toggles it).
     #[arg(long)]
     pub no_hud: bool,
+    /// Start with the temporal mode on (docs/temporal.md: frames accumulated into a
+    /// full-resolution history; T toggles it).
+    #[arg(long)]
+    pub temporal: bool,
     /// Show this many frames, then exit (tests and CI drive the view this way).
     #[arg(long)]
     pub frames: Option<u32>,
@@ -115,6 +119,7 @@ struct Plan {
     sweep_seconds: f32,
     speed: f32,
     hud: bool,
+    temporal: bool,
     frames: Option<u32>,
     screenshot: Option<PathBuf>,
 }
@@ -195,6 +200,7 @@ impl Plan {
             sweep_seconds: args.sweep_seconds,
             speed: args.speed,
             hud: !args.no_hud,
+            temporal: args.temporal,
             frames: args.frames,
             screenshot: args.screenshot.clone(),
         })

@@ -1,0 +1,172 @@
+//! The temporal mode on the command line: `render --temporal` writes the accumulated
+//! history at full size (also at a reduced scale) and every frame with `--sequence`; `bench
+//! --temporal both` runs every controller without and with it; bad values are clear errors.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
+
+fn scratch(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("steadyray-temporal-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .output()
+        .expect("cannot run steadyray")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+#[test]
+fn render_writes_the_history_and_the_sequence() {
+    let dir = scratch("render");
+    let out = dir.join("history.png");
+    let sequence = dir.join("frames");
+    let output = run(&[
+        "render",
+        "--backend",
+        "cpu",
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--spp",
+        "1",
+        "--depth",
+        "4",
+        "--frame",
+        "10",
+        "--frames",
+        "720",
+        "--temporal",
+        "6",
+        "--scale",
+        "0.5",
+        "--sequence",
+        sequence.to_str().unwrap(),
+        "--stats",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let image = image::open(&out).unwrap();
+    assert_eq!(
+        (image.width(), image.height()),
+        (64, 36),
+        "the history's size"
+    );
+    for i in 0..6 {
+        let frame = image::open(sequence.join(format!("frame_{i:04}.png"))).unwrap();
+        assert_eq!((frame.width(), frame.height()), (64, 36));
+    }
+    let stats: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(stats["temporal_frames"], 6);
+    assert_eq!(
+        (stats["width"].clone(), stats["height"].clone()),
+        (32.into(), 18.into())
+    );
+}
+
+#[test]
+fn bad_temporal_values_are_errors() {
+    let dir = scratch("bad");
+    let out = dir.join("x.png");
+    let out = out.to_str().unwrap();
+    for (args, message) in [
+        (vec!["--temporal", "0"], "at least 1 frame"),
+        (vec!["--temporal", "4", "--scale", "1.5"], "outside (0, 1]"),
+        (vec!["--temporal", "4", "--rate", "0"], "positive number"),
+    ] {
+        let mut all = vec![
+            "render",
+            "--backend",
+            "cpu",
+            "--width",
+            "16",
+            "--height",
+            "9",
+            "-o",
+            out,
+        ];
+        all.extend(args);
+        let output = run(&all);
+        assert!(!output.status.success());
+        assert!(stderr(&output).contains(message), "{}", stderr(&output));
+    }
+    assert!(!dir.join("x.png").exists(), "nothing written");
+    let output = run(&[
+        "bench",
+        "--simulate",
+        "--temporal",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("--temporal needs a renderer"),
+        "{}",
+        stderr(&output)
+    );
+}
+
+#[test]
+fn bench_runs_every_controller_without_and_with_history() {
+    let dir = scratch("bench");
+    let output = run(&[
+        "bench",
+        "--backend",
+        "cpu",
+        "--width",
+        "48",
+        "--height",
+        "27",
+        "--frames",
+        "6",
+        "--warmup",
+        "1",
+        "--controllers",
+        "fixed,predictive",
+        "--no-best-fixed",
+        "--temporal",
+        "both",
+        "--quality",
+        "--every",
+        "3",
+        "--reference-spp",
+        "4",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["temporal"], "both");
+    let names: Vec<&str> = summary["controllers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "fixed S=1 R=16",
+            "fixed S=1 R=16 +temporal",
+            "predictive",
+            "predictive +temporal"
+        ]
+    );
+    for c in summary["controllers"].as_array().unwrap() {
+        assert!(c["flip_mean"].as_f64().unwrap() > 0.0, "{c}");
+    }
+}
