@@ -16,6 +16,7 @@
 //!   "resolution": [320, 180],
 //!   "reference": { "spp": 256.0, "depth": 16, "scale": 1.0 },
 //!   "views": 8,
+//!   "temporal_frames": 8,
 //!   "points": [
 //!     { "spp": 1.0, "depth": 0, "scale": 0.5, "rays": 51000.0, "ms": 1.9, "flip": 0.31 },
 //!     { "spp": 1.0, "depth": 2, "scale": 1.0, "rays": 260000.0, "ms": 7.5, "flip": 0.12 }
@@ -26,7 +27,9 @@
 //! `points` is the front, in order of rising cost: `rays` (mean rays per frame over the
 //! views, shadow rays included) strictly rises and `flip` (mean FLIP against the reference)
 //! strictly falls. `ms` is the mean frame time measured while calibrating (information only).
-//! The other fields say what the ladder was calibrated on.
+//! The other fields say what the ladder was calibrated on; `temporal_frames` (optional) that
+//! the FLIP is that of the temporal mode's history after so many frames leading up to each
+//! view.
 
 use crate::quality::Quality;
 use serde::{Deserialize, Serialize};
@@ -75,6 +78,10 @@ pub struct Ladder {
     pub reference: Reference,
     /// Views of the camera path measured.
     pub views: u32,
+    /// With the temporal mode: the frames accumulated before each view was measured (the
+    /// points' FLIP is the history's; `calibrate --temporal`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temporal_frames: Option<u32>,
     /// The Pareto front, cheapest first.
     pub points: Vec<LadderPoint>,
 }
@@ -224,6 +231,7 @@ mod tests {
                 scale: 1.0,
             },
             views: 2,
+            temporal_frames: None,
             points: vec![pt(1.0, 0, 100.0, 0.4), pt(1.0, 2, 250.0, 0.2)],
         };
         let text = serde_json::to_string(&ladder).unwrap();

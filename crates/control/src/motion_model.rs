@@ -247,6 +247,7 @@ mod tests {
                     scale: 1.0,
                 },
                 views: 1,
+                temporal_frames: None,
                 points: vec![point(1.0, 1e6, 0.2), point(4.0, 4e6, 0.1)],
             },
             speeds_deg_s: vec![0.0, 20.0],

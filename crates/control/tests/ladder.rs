@@ -50,6 +50,7 @@ fn ladder() -> Ladder {
             scale: 1.0,
         },
         views: 0,
+        temporal_frames: None,
         points,
     };
     ladder.validate().unwrap();

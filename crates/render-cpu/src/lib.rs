@@ -170,7 +170,10 @@ impl Renderer for CpuRenderer {
                 // Rays follow the history's aspect, so every sample lies where it lands.
                 let size = history.clock.settings();
                 let frame = camera.frame(size.width, size.height);
-                let temporal = history.clock.advance(frame);
+                let temporal = history.clock.advance(frame, time_s, world.is_animated());
+                if temporal.world_moved {
+                    world.surface_moves(temporal.previous_time_s, time_s, &mut history.moves);
+                }
                 let pattern = SamplePattern {
                     jitter: temporal.jitter,
                     sample_base: sample_base(temporal.index),

@@ -13,6 +13,7 @@ use glam::Vec3A;
 use std::time::Instant;
 use steadyray_accel::{Bounds, TopLayout, TopLevel};
 use steadyray_render::RenderError;
+use steadyray_render::surface_motion::{SurfaceMove, surface_moves};
 use steadyray_render::two_level::{Instance, Leaf, SceneLayout};
 use steadyray_scene::Scene;
 
@@ -67,16 +68,18 @@ pub(crate) struct World {
     leaf_refs: Vec<LeafRef>,
     spheres: Vec<Sphere>,
     quads: Vec<Quad>,
-    /// The temporal mode's surface ids of the frame's spheres and quads.
+    /// The temporal mode's surface ids of the frame's spheres, quads and instances.
     sphere_ids: Vec<u32>,
     quad_ids: Vec<u32>,
+    instance_ids: Vec<u32>,
     instances: Vec<Instance>,
     top: TopLevel,
     /// The time the leaves were placed at; `None` before the first placement.
     time_s: Option<f64>,
-    /// Scratch for the frame's leaves and boxes.
+    /// Scratch for the frame's leaves, boxes and surface ids.
     leaves: Vec<Leaf>,
     boxes: Vec<Bounds>,
+    leaf_ids: Vec<u32>,
 }
 
 impl World {
@@ -115,11 +118,13 @@ impl World {
             quads: Vec::new(),
             sphere_ids: Vec::new(),
             quad_ids: Vec::new(),
+            instance_ids: Vec::new(),
             instances: Vec::new(),
             top: TopLevel::build(&[], TopLayout::Cpu).map_err(top_error)?,
             time_s: None,
             leaves: Vec::new(),
             boxes: Vec::new(),
+            leaf_ids: Vec::new(),
         };
         world.set_time(0.0)?;
         Ok(world)
@@ -133,16 +138,21 @@ impl World {
             return Ok(0.0);
         }
         let start = Instant::now();
-        self.layout
-            .leaves_at(&self.scene, time_s, &mut self.leaves, &mut self.boxes);
+        self.layout.leaves_at(
+            &self.scene,
+            time_s,
+            &mut self.leaves,
+            &mut self.boxes,
+            &mut self.leaf_ids,
+        );
         self.leaf_refs.clear();
         self.spheres.clear();
         self.quads.clear();
         self.sphere_ids.clear();
         self.quad_ids.clear();
+        self.instance_ids.clear();
         self.instances.clear();
-        let mut next_id = self.planes.len() as u32;
-        for leaf in &self.leaves {
+        for (leaf, &id) in self.leaves.iter().zip(&self.leaf_ids) {
             let leaf_ref = match *leaf {
                 Leaf::Sphere {
                     center,
@@ -150,8 +160,7 @@ impl World {
                     material,
                 } => {
                     self.spheres.push(Sphere::new(center, radius, material));
-                    self.sphere_ids.push(next_id);
-                    next_id += 1;
+                    self.sphere_ids.push(id);
                     LeafRef::Sphere(self.spheres.len() as u32 - 1)
                 }
                 Leaf::Quad {
@@ -165,12 +174,12 @@ impl World {
                         RenderError::Scene(format!("a quad at {corner} has no area"))
                     })?;
                     self.quads.push(quad);
-                    self.quad_ids.push(next_id);
-                    next_id += 1;
+                    self.quad_ids.push(id);
                     LeafRef::Quad(self.quads.len() as u32 - 1)
                 }
                 Leaf::Instance(instance) => {
                     self.instances.push(instance);
+                    self.instance_ids.push(id);
                     LeafRef::Instance(self.instances.len() as u32 - 1)
                 }
             };
@@ -282,19 +291,26 @@ impl World {
         &self.materials[m as usize]
     }
 
-    /// The temporal mode's surface id of `prim` (`docs/temporal.md`): the planes in object
-    /// order, then the frame's spheres and quads in object order (as the GPU packs its
-    /// shapes), every mesh triangle one id after them.
+    /// The temporal mode's surface id of `prim` (`docs/temporal.md`): its object's (and
+    /// copy's), the same in every frame.
     #[inline]
     pub fn surface_id(&self, prim: Prim) -> u32 {
         match prim {
             Prim::Sphere(i) => self.sphere_ids[i as usize],
             Prim::Quad(i) => self.quad_ids[i as usize],
-            Prim::Plane(i) => i,
-            Prim::Triangle { .. } => {
-                (self.planes.len() + self.spheres.len() + self.quads.len()) as u32
-            }
+            Prim::Plane(i) => self.layout.planes[i as usize].surface,
+            Prim::Triangle { instance, .. } => self.instance_ids[instance as usize],
         }
+    }
+
+    /// Whether objects of the scene move, appear or disappear.
+    pub fn is_animated(&self) -> bool {
+        self.layout.animated
+    }
+
+    /// How every surface moved from scene time `before_s` to `now_s`, by surface id.
+    pub fn surface_moves(&self, before_s: f64, now_s: f64, out: &mut Vec<SurfaceMove>) {
+        surface_moves(&self.scene, &self.layout, before_s, now_s, out);
     }
 
     /// Whether `prim` is flat (a quad or a plane): a mirror image in it is a virtual scene

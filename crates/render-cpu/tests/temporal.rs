@@ -9,7 +9,7 @@ use common::*;
 use steadyray_quality::{Rgb8Image, flip};
 use steadyray_render::{Image, RenderError, Renderer, SettingsError, TemporalSettings};
 use steadyray_render_cpu::CpuRenderer;
-use steadyray_scene::{Camera, Checker, Material, Scene, Shape, Vec3, builtin};
+use steadyray_scene::{Camera, Checker, Material, Motion, MotionKey, Scene, Shape, Vec3, builtin};
 
 fn rgb8(image: &Image) -> Rgb8Image {
     Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba()).unwrap()
@@ -168,6 +168,153 @@ fn no_history_survives_a_disocclusion() {
         assert_eq!(red, 0, "scale {scale}: the ball's history survived");
         assert!(blended > 200, "scale {scale}: the wall's history must stay");
     }
+}
+
+/// The wall and the ball of [`wall_and_ball`], the ball sliding +x at 1 m/s (its model
+/// centre at x = 0, time 0).
+fn sliding_ball() -> Scene {
+    let mut scene = wall_and_ball();
+    scene.objects[1].motion = Some(Motion {
+        keys: vec![
+            MotionKey {
+                t: 0.0,
+                translate: Some(Vec3::ZERO),
+                rotate_y_deg: None,
+                scale: None,
+            },
+            MotionKey {
+                t: 10.0,
+                translate: Some(Vec3::new(10.0, 0.0, 0.0)),
+                rotate_y_deg: None,
+                scale: None,
+            },
+        ],
+        ..Default::default()
+    });
+    scene
+}
+
+/// After 0.5 s at 60 Hz of `scene` (the ball at x = `x(t)`), seen from the origin: the
+/// pixels uncovered behind the ball's start and how many of them keep red history, and the
+/// pixels on the ball's outline and how many of them blend ball and wall.
+fn outline_and_wake(scene: &Scene, x: impl Fn(f64) -> f32) -> [usize; 4] {
+    let (w, h) = (160u32, 90u32);
+    let camera = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 60.0);
+    let mut r = temporal(scene, w, h);
+    let set = settings(w, h, 1.0, 2);
+    let frames = 30;
+    for k in 0..frames {
+        r.render(&camera, f64::from(k) / 60.0, &set).unwrap();
+    }
+    let image = r.read_image().unwrap();
+    let centre_now = Vec3::new(x(f64::from(frames - 1) / 60.0), 0.0, -4.0);
+    let frame = camera.frame(w, h);
+    // 0.05 m at the ball is a pixel.
+    let margin = 0.1;
+    let (mut uncovered, mut red, mut edges, mut blended) = (0, 0, 0, 0);
+    for py in 0..h {
+        for px in 0..w {
+            let dir = frame.ray_dir(px, py, 0.5, 0.5, w, h);
+            let wall = dir * (-10.0 / dir.z);
+            let [r, g, _] = image.get(px, py);
+            let near_now = passes_near(Vec3::ZERO, wall, centre_now, 1.0 + margin);
+            let inside_now = passes_near(Vec3::ZERO, wall, centre_now, 1.0 - margin);
+            if !near_now && passes_near(Vec3::ZERO, wall, Vec3::new(0.0, 0.0, -4.0), 0.9) {
+                uncovered += 1;
+                red += usize::from(r != 0.0);
+            }
+            if near_now && !inside_now {
+                edges += 1;
+                blended += usize::from(r > 0.0 && r < 1.0 && g > 0.0);
+            }
+        }
+    }
+    [uncovered, red, edges, blended]
+}
+
+#[test]
+fn moving_objects_keep_their_history_and_uncover_the_wall() {
+    let [uncovered, red, edges, blended] = outline_and_wake(&sliding_ball(), |t| t as f32);
+    eprintln!("{uncovered} uncovered ({red} red), {edges} on the outline ({blended} blended)");
+    assert!(uncovered > 150, "too few pixels uncovered");
+    assert_eq!(red, 0, "the ball's history stayed behind it");
+}
+
+/// A checkered card (its checker moves with it) sliding +x at 3 m/s in front of a grey wall.
+fn sliding_card() -> Scene {
+    let materials = vec![
+        diffuse(Vec3::splat(0.4)),
+        Material::Diffuse {
+            albedo: Vec3::new(0.9, 0.2, 0.1),
+            checker: Some(Checker {
+                size: 0.1,
+                albedo_b: Vec3::new(0.1, 0.3, 0.9),
+            }),
+        },
+    ];
+    let wall = Shape::Quad {
+        corner: Vec3::new(-20.0, -20.0, -10.0),
+        edge_u: Vec3::new(40.0, 0.0, 0.0),
+        edge_v: Vec3::new(0.0, 40.0, 0.0),
+    };
+    let card = Shape::Quad {
+        corner: Vec3::new(-2.0, -0.6, -4.0),
+        edge_u: Vec3::new(1.2, 0.0, 0.0),
+        edge_v: Vec3::new(0.0, 1.2, 0.0),
+    };
+    let mut scene = scene(
+        materials,
+        vec![(wall, 0), (card, 1)],
+        Vec::new(),
+        1.0,
+        Vec3::ZERO,
+    );
+    scene.objects[1].motion = Some(Motion {
+        keys: vec![
+            MotionKey {
+                t: 0.0,
+                translate: Some(Vec3::ZERO),
+                rotate_y_deg: None,
+                scale: None,
+            },
+            MotionKey {
+                t: 10.0,
+                translate: Some(Vec3::new(30.0, 0.0, 0.0)),
+                rotate_y_deg: None,
+                scale: None,
+            },
+        ],
+        ..Default::default()
+    });
+    scene
+}
+
+#[test]
+fn a_moving_texture_is_reprojected_with_its_object() {
+    let scene = sliding_card();
+    let camera = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 60.0);
+    let last = 19.0 / 60.0;
+    let frame_at = |spp| {
+        let mut plain = loaded(&scene);
+        plain
+            .render(&camera, last, &settings(160, 90, spp, 2))
+            .unwrap();
+        plain.read_image().unwrap()
+    };
+    let reference = frame_at(64.0);
+    let single = flip_against(&reference, &frame_at(1.0));
+    // 20 frames at 60 Hz: the card moves about 3 pixels a frame.
+    let mut r = temporal(&scene, 160, 90);
+    for k in 0..20 {
+        r.render(&camera, f64::from(k) / 60.0, &settings(160, 90, 1.0, 2))
+            .unwrap();
+    }
+    let accumulated = flip_against(&reference, &r.read_image().unwrap());
+    eprintln!("moving card: FLIP one frame {single:.4}, 20 accumulated frames {accumulated:.4}");
+    assert!(
+        accumulated < 0.8 * single,
+        "the moving card's history smears its checker ({accumulated} against {single})"
+    );
 }
 
 #[test]

@@ -5,6 +5,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use steadyray_render::MAX_DEPTH;
+use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_scene::camera::CameraFrame;
 
 /// A node of the triangle BVH (WGSL `BvhNode`): the 4-wide GPU layout of
@@ -270,11 +271,62 @@ pub struct GpuTemporalParams {
     pub has_history: u32,
     /// 1 when the eye moved since the previous frame.
     pub eye_moved: u32,
-    /// 1 when the camera frame is the previous one exactly.
+    /// 1 when the camera frame is the previous one exactly and no object moved.
     pub still: u32,
+    /// 1 when objects may have moved: `surface_count` entries of the motion table say how.
+    pub world_moved: u32,
+    pub surface_count: u32,
     pub pad0: u32,
+}
+
+/// [`GpuSurfaceMotion::kind`] of a surface where it was.
+pub const SURFACE_STILL: u32 = 0;
+/// [`GpuSurfaceMotion::kind`] of a surface that moved.
+pub const SURFACE_MOVED: u32 = 1;
+/// [`GpuSurfaceMotion::kind`] of a surface that did not exist in the previous frame.
+pub const SURFACE_NEW: u32 = 2;
+
+/// How a surface moved since the previous frame (WGSL `SurfaceMotion`,
+/// `steadyray_render::surface_motion::SurfaceMove`): its kind, and for a moved one the rows of
+/// its point map (`p_*`) and normal map (`n_*`) back to the previous frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSurfaceMotion {
+    pub p_x: [f32; 4],
+    pub p_y: [f32; 4],
+    pub p_z: [f32; 4],
+    pub n_x: [f32; 3],
+    pub kind: u32,
+    pub n_y: [f32; 3],
+    pub pad0: u32,
+    pub n_z: [f32; 3],
     pub pad1: u32,
-    pub pad2: u32,
+}
+
+impl From<&SurfaceMove> for GpuSurfaceMotion {
+    fn from(m: &SurfaceMove) -> Self {
+        match m {
+            SurfaceMove::Still => Self::default(),
+            SurfaceMove::New => Self {
+                kind: SURFACE_NEW,
+                ..Self::default()
+            },
+            SurfaceMove::Moved(map) => {
+                let [p_x, p_y, p_z] = map.point_rows;
+                let [n_x, n_y, n_z] = map.normal_rows;
+                Self {
+                    p_x,
+                    p_y,
+                    p_z,
+                    n_x,
+                    kind: SURFACE_MOVED,
+                    n_y,
+                    n_z,
+                    ..Self::default()
+                }
+            }
+        }
+    }
 }
 
 /// A ray of a ray list (WGSL `CastRay`): origin + t·dir, hit on t in (T_MIN, ∞).
@@ -525,9 +577,23 @@ mod tests {
                     has_history,
                     eye_moved,
                     still,
+                    world_moved,
+                    surface_count,
                     pad0,
+                }),
+            ),
+            (
+                "SurfaceMotion",
+                rust_layout!(GpuSurfaceMotion {
+                    p_x,
+                    p_y,
+                    p_z,
+                    n_x,
+                    kind,
+                    n_y,
+                    pad0,
+                    n_z,
                     pad1,
-                    pad2,
                 }),
             ),
         ];
@@ -587,6 +653,10 @@ mod tests {
             ("MISS_ID", temporal::MISS_ID),
             ("ID_MASK", temporal::ID_MASK),
             ("APPROX_FLAG", temporal::APPROX_FLAG),
+            ("MIRROR_FLAG", temporal::MIRROR_FLAG),
+            ("SURFACE_STILL", SURFACE_STILL),
+            ("SURFACE_MOVED", SURFACE_MOVED),
+            ("SURFACE_NEW", SURFACE_NEW),
         ];
         for (name, value) in rust {
             assert_eq!(wgsl_u32(name), value, "WGSL constant {name}");

@@ -55,6 +55,7 @@ pub(crate) mod binding {
     pub const TOP_NODES: u32 = 11;
     pub const TOP_LEAVES: u32 = 12;
     pub const INSTANCES: u32 = 13;
+    pub const SURFACE_IDS: u32 = 14;
 }
 
 /// The three entry points of [`SHADER_SOURCE`] over one bind group layout.
@@ -115,6 +116,7 @@ impl Pipelines {
                 layout_entry(TOP_NODES, read),
                 layout_entry(TOP_LEAVES, read),
                 layout_entry(INSTANCES, read),
+                layout_entry(SURFACE_IDS, read),
             ],
         });
         let module = shader_module(device, SHADER_SOURCE)?;

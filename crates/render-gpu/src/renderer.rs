@@ -139,6 +139,7 @@ impl GpuRenderer {
                         buffer_entry(binding::TOP_NODES, s.top_nodes.buffer()),
                         buffer_entry(binding::TOP_LEAVES, s.top_leaves.buffer()),
                         buffer_entry(binding::INSTANCES, s.instances.buffer()),
+                        buffer_entry(binding::SURFACE_IDS, s.surface_ids.buffer()),
                     ],
                 })
         });
@@ -304,6 +305,7 @@ impl Renderer for GpuRenderer {
         let shape_count = count(scene.world.shapes.len(), "shapes")?;
         let light_count = scene.packed.lights.len() as u32;
         let (ambient, background) = (scene.packed.ambient, scene.packed.background);
+        let animated = scene.world.is_animated();
         let (width, height) = (settings.width, settings.height);
         let groups_x = width.div_ceil(WORKGROUP_SIZE);
         let groups_y = height.div_ceil(WORKGROUP_SIZE);
@@ -321,7 +323,13 @@ impl Renderer for GpuRenderer {
         // it lands.
         let (frame_width, frame_height) = history.map_or((width, height), |h| (h.width, h.height));
         let cam = camera.frame(frame_width, frame_height);
-        let step = self.temporal.advance(cam);
+        let step = self.temporal.advance(cam, time_s, animated);
+        if let (Some(step), Some(scene)) = (step.filter(|s| s.world_moved), &self.scene) {
+            self.temporal
+                .upload_moves(&self.ctx.device, &self.ctx.queue, |out| {
+                    scene.world.surface_moves(step.previous_time_s, time_s, out);
+                });
+        }
         let frame = GpuFrame {
             eye: cam.eye.to_array(),
             half_width: cam.half_width,

@@ -8,6 +8,7 @@ use crate::layout::*;
 use glam::{Vec3, Vec3A};
 use steadyray_accel::{Bounds, BvhError, TopLayout, TopLevel};
 use steadyray_render::RenderError;
+use steadyray_render::surface_motion::{SurfaceMove, surface_moves};
 use steadyray_render::two_level::{Leaf, SceneLayout};
 use steadyray_scene::{Material, Scene};
 
@@ -182,8 +183,11 @@ pub(crate) struct GpuWorld {
     time_s: Option<f64>,
     leaves: Vec<Leaf>,
     boxes: Vec<Bounds>,
+    leaf_ids: Vec<u32>,
     /// The planes, then the frame's spheres and quads.
     pub(crate) shapes: Vec<GpuShape>,
+    /// The temporal mode's surface ids of `shapes`, then of `instances`.
+    pub(crate) surface_ids: Vec<u32>,
     /// The frame's leaves in the top level's leaf order.
     pub(crate) top_leaves: Vec<GpuTopLeaf>,
     pub(crate) instances: Vec<GpuInstance>,
@@ -199,10 +203,22 @@ impl GpuWorld {
             time_s: None,
             leaves: Vec::new(),
             boxes: Vec::new(),
+            leaf_ids: Vec::new(),
             shapes: Vec::new(),
+            surface_ids: Vec::new(),
             top_leaves: Vec::new(),
             instances: Vec::new(),
         })
+    }
+
+    /// Whether objects of the scene move, appear or disappear.
+    pub(crate) fn is_animated(&self) -> bool {
+        self.layout.animated
+    }
+
+    /// How every surface moved from scene time `before_s` to `now_s`, by surface id.
+    pub(crate) fn surface_moves(&self, before_s: f64, now_s: f64, out: &mut Vec<SurfaceMove>) {
+        surface_moves(&self.scene, &self.layout, before_s, now_s, out);
     }
 
     /// The top level's nodes.
@@ -217,15 +233,24 @@ impl GpuWorld {
         if self.time_s.is_some() && !self.layout.animated {
             return Ok(false);
         }
-        self.layout
-            .leaves_at(&self.scene, time_s, &mut self.leaves, &mut self.boxes);
+        self.layout.leaves_at(
+            &self.scene,
+            time_s,
+            &mut self.leaves,
+            &mut self.boxes,
+            &mut self.leaf_ids,
+        );
         self.top.update(&self.boxes).map_err(top_error)?;
         self.shapes.clear();
         self.shapes.extend_from_slice(&packed.planes);
+        self.surface_ids.clear();
+        self.surface_ids
+            .extend(self.layout.planes.iter().map(|p| p.surface));
+        let mut instance_ids = Vec::new();
         self.instances.clear();
         // Each leaf as a shape or instance, by its index (its key).
         let mut index = Vec::with_capacity(self.leaves.len());
-        for leaf in &self.leaves {
+        for (leaf, &id) in self.leaves.iter().zip(&self.leaf_ids) {
             index.push(match *leaf {
                 Leaf::Sphere {
                     center,
@@ -233,6 +258,7 @@ impl GpuWorld {
                     material,
                 } => {
                     self.shapes.push(pack_sphere(center, radius, material));
+                    self.surface_ids.push(id);
                     self.shapes.len() as u32 - 1
                 }
                 Leaf::Quad {
@@ -243,6 +269,7 @@ impl GpuWorld {
                 } => {
                     self.shapes
                         .push(pack_quad(corner, edge_u, edge_v, material));
+                    self.surface_ids.push(id);
                     self.shapes.len() as u32 - 1
                 }
                 Leaf::Instance(inst) => {
@@ -262,10 +289,12 @@ impl GpuWorld {
                         baked: u32::from(inst.to_mesh.is_none()),
                         ..Default::default()
                     });
+                    instance_ids.push(id);
                     TOP_INSTANCE | (self.instances.len() as u32 - 1)
                 }
             });
         }
+        self.surface_ids.extend(instance_ids);
         self.top_leaves.clear();
         self.top_leaves
             .extend(self.top.leaf_order().iter().map(|&key| GpuTopLeaf {
@@ -291,6 +320,7 @@ pub(crate) struct SceneBuffers {
     pub(crate) top_nodes: GrowBuffer,
     pub(crate) top_leaves: GrowBuffer,
     pub(crate) instances: GrowBuffer,
+    pub(crate) surface_ids: GrowBuffer,
 }
 
 impl SceneBuffers {
@@ -306,6 +336,7 @@ impl SceneBuffers {
             top_nodes: buffer("top-level nodes"),
             top_leaves: buffer("top-level leaves"),
             instances: buffer("instances"),
+            surface_ids: buffer("surface ids"),
         }
     }
 
@@ -347,6 +378,8 @@ impl SceneBuffers {
                 .write(device, queue, bytemuck::cast_slice(&world.top_leaves)),
             self.instances
                 .write(device, queue, bytemuck::cast_slice(&world.instances)),
+            self.surface_ids
+                .write(device, queue, bytemuck::cast_slice(&world.surface_ids)),
         ];
         Ok(grew.contains(&true))
     }

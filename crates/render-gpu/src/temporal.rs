@@ -4,11 +4,12 @@
 //! frame's timestamps. Nothing of it is read back in the loop.
 
 use crate::buffers::{FrameBuffers, GrowBuffer};
-use crate::layout::{GpuTemporalParams, WORKGROUP_SIZE};
+use crate::layout::{GpuSurfaceMotion, GpuTemporalParams, WORKGROUP_SIZE};
 use crate::pipeline::{
     TEMPORAL_SOURCE, buffer_entry, compute_pipeline, layout_entry, shader_module,
 };
 use crate::timing::GpuTimer;
+use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{HistoryClock, TemporalFrame};
 use steadyray_render::{RenderError, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
@@ -23,6 +24,7 @@ mod binding {
     pub const HISTORY_OUT: u32 = 5;
     pub const GEOMETRY_OUT: u32 = 6;
     pub const HISTORY_SRGB8: u32 = 7;
+    pub const SURFACE_MOVES: u32 = 8;
 }
 
 /// The history's buffers and bookkeeping, while the temporal mode is on.
@@ -39,21 +41,28 @@ struct History {
     read: usize,
 }
 
-/// The resolve and history tone-map pipelines, their uniform, and the history.
+/// The resolve and history tone-map pipelines, their uniform, the surfaces' motion table and
+/// the history.
 pub(crate) struct TemporalPass {
     layout: wgpu::BindGroupLayout,
     resolve: wgpu::ComputePipeline,
     tonemap: wgpu::ComputePipeline,
     params: wgpu::Buffer,
+    /// How each surface moved since the previous frame (`GpuSurfaceMotion` per surface id).
+    moves: GrowBuffer,
+    /// Scratch for the host's table of moves.
+    host_moves: Vec<SurfaceMove>,
     history: Option<History>,
 }
 
-/// The uniform of a frame: `current` and the previous camera frame, the sizes and `frame`.
+/// The uniform of a frame: `current` and the previous camera frame, the sizes, `frame` and
+/// the number of surfaces in the motion table.
 fn params(
     settings: TemporalSettings,
     low: (u32, u32),
     current: &CameraFrame,
     frame: &TemporalFrame,
+    surfaces: u32,
 ) -> GpuTemporalParams {
     GpuTemporalParams {
         current: current.into(),
@@ -66,6 +75,8 @@ fn params(
         has_history: u32::from(frame.previous.is_some()),
         eye_moved: u32::from(frame.eye_moved),
         still: u32::from(frame.still),
+        world_moved: u32::from(frame.world_moved),
+        surface_count: surfaces,
         ..Default::default()
     }
 }
@@ -86,6 +97,7 @@ impl TemporalPass {
                 layout_entry(HISTORY_OUT, write),
                 layout_entry(GEOMETRY_OUT, write),
                 layout_entry(HISTORY_SRGB8, write),
+                layout_entry(SURFACE_MOVES, read),
             ],
         });
         let module = shader_module(device, TEMPORAL_SOURCE)?;
@@ -95,11 +107,19 @@ impl TemporalPass {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let moves = GrowBuffer::new(
+            device,
+            "surface moves",
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            0,
+        );
         Ok(Self {
             resolve: compute_pipeline(device, &layout, &module, "resolve")?,
             tonemap: compute_pipeline(device, &layout, &module, "tonemap_history")?,
             layout,
             params,
+            moves,
+            host_moves: Vec::new(),
             history: None,
         })
     }
@@ -142,10 +162,37 @@ impl TemporalPass {
         }
     }
 
-    /// Counts the next frame, seen from camera frame `current` (for the history's size),
-    /// and returns what its render pass needs; None when the mode is off.
-    pub(crate) fn advance(&mut self, current: CameraFrame) -> Option<TemporalFrame> {
-        self.history.as_mut().map(|h| h.clock.advance(current))
+    /// Counts the next frame, seen from camera frame `current` (for the history's size) at
+    /// scene time `time_s` of a scene that is `animated` or not, and returns what its render
+    /// pass needs; None when the mode is off.
+    pub(crate) fn advance(
+        &mut self,
+        current: CameraFrame,
+        time_s: f64,
+        animated: bool,
+    ) -> Option<TemporalFrame> {
+        self.history
+            .as_mut()
+            .map(|h| h.clock.advance(current, time_s, animated))
+    }
+
+    /// Uploads how the surfaces moved for the next resolve: `fill` writes the table into the
+    /// scratch it is given. Returns whether the table's buffer was replaced.
+    pub(crate) fn upload_moves(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        fill: impl FnOnce(&mut Vec<SurfaceMove>),
+    ) -> bool {
+        fill(&mut self.host_moves);
+        let table: Vec<GpuSurfaceMotion> = self.host_moves.iter().map(Into::into).collect();
+        let grew = self
+            .moves
+            .write(device, queue, bytemuck::cast_slice(&table));
+        if grew {
+            self.invalidate();
+        }
+        grew
     }
 
     /// Writes the frame's uniform and records the resolve of a `low`-sized frame into the
@@ -164,17 +211,21 @@ impl TemporalPass {
         };
         let settings = history.clock.settings();
         let (current, frame, low) = step;
-        let uniform = params(settings, low, current, frame);
+        let surfaces = if frame.world_moved {
+            self.host_moves.len() as u32
+        } else {
+            0
+        };
+        let uniform = params(settings, low, current, frame, surfaces);
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&uniform));
         let groups = history.bind_groups.get_or_insert_with(|| {
-            bind_groups(
-                device,
-                &self.layout,
-                &self.params,
-                frame_buffers,
-                &history.colour,
-                &history.geometry,
-            )
+            let buffers = TemporalBuffers {
+                params: &self.params,
+                moves: &self.moves,
+                colour: &history.colour,
+                geometry: &history.geometry,
+            };
+            bind_groups(device, &self.layout, frame_buffers, &buffers)
         });
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("temporal resolve"),
@@ -220,16 +271,23 @@ impl TemporalPass {
     }
 }
 
+/// The temporal pass's own buffers a bind group names.
+struct TemporalBuffers<'a> {
+    params: &'a wgpu::Buffer,
+    moves: &'a GrowBuffer,
+    colour: &'a [GrowBuffer; 2],
+    geometry: &'a [GrowBuffer; 2],
+}
+
 /// The two bind groups of a history: group i reads history i and writes the other.
 fn bind_groups(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
-    params: &wgpu::Buffer,
     frame_buffers: &FrameBuffers,
-    colour: &[GrowBuffer; 2],
-    geometry: &[GrowBuffer; 2],
+    b: &TemporalBuffers<'_>,
 ) -> [wgpu::BindGroup; 2] {
     use binding::*;
+    let (params, colour, geometry) = (b.params, b.colour, b.geometry);
     [0, 1].map(|i| {
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("temporal bindings"),
@@ -243,6 +301,7 @@ fn bind_groups(
                 buffer_entry(HISTORY_OUT, colour[1 - i].buffer()),
                 buffer_entry(GEOMETRY_OUT, geometry[1 - i].buffer()),
                 buffer_entry(HISTORY_SRGB8, frame_buffers.srgb8.buffer()),
+                buffer_entry(SURFACE_MOVES, b.moves.buffer()),
             ],
         })
     })

@@ -10,8 +10,8 @@ use steadyray_render::{RenderSettings, Renderer, TemporalSettings};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_scene::{Camera, Vec3, builtin};
 
-/// One frame of a sequence: the camera and the frame's settings.
-type Step = (Camera, RenderSettings);
+/// One frame of a sequence: the camera, the scene time and the frame's settings.
+type Step = (Camera, f64, RenderSettings);
 
 fn settings(width: u32, height: u32, spp: f32, max_depth: u32) -> RenderSettings {
     RenderSettings {
@@ -39,13 +39,13 @@ fn check_sequence(name: &str, scene_name: &str, size: (u32, u32), steps: &[Step]
         r.set_temporal(Some(history)).unwrap();
     }
     let exact = gpu.adapter().is_software;
-    for (k, (camera, set)) in steps.iter().enumerate() {
+    for (k, &(camera, time_s, ref set)) in steps.iter().enumerate() {
         if cuts.contains(&k) {
             gpu.reset_history();
             cpu.reset_history();
         }
-        let g = gpu.render(camera, 0.0, set).unwrap();
-        let c = cpu.render(camera, 0.0, set).unwrap();
+        let g = gpu.render(&camera, time_s, set).unwrap();
+        let c = cpu.render(&camera, time_s, set).unwrap();
         assert_eq!(
             g.rays.per_depth[0], c.rays.per_depth[0],
             "{name} frame {k}: eye rays"
@@ -90,6 +90,7 @@ fn a_sweep_with_changing_scale_and_quality() {
             let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
             (
                 scene.camera_at(k as u32, 90),
+                0.0,
                 settings(side(w), side(h), spp, depth),
             )
         })
@@ -101,12 +102,13 @@ fn a_sweep_with_changing_scale_and_quality() {
 fn a_still_camera_then_a_moving_eye() {
     let scene = builtin("corridor").unwrap();
     let set = settings(64, 36, 1.0, 6);
-    let mut steps: Vec<Step> = (0..4).map(|_| (scene.camera, set)).collect();
+    let mut steps: Vec<Step> = (0..4).map(|_| (scene.camera, 0.0, set)).collect();
     // The eye walks toward the glass sphere: parallax, disocclusions, the specular cap.
     steps.extend((0..6).map(|k| {
         let eye = Vec3::new(0.1 * k as f32, 1.4, -0.3 * k as f32);
         (
             Camera::look_at(eye, Vec3::new(0.6, 0.45, -4.0), Vec3::Y, 50.0),
+            0.0,
             set,
         )
     }));
@@ -121,12 +123,31 @@ fn meshes_and_other_scenes() {
             .map(|k| {
                 (
                     scene.camera_at(k, 64),
+                    0.0,
                     settings(48, 32, 1.0 + 0.5 * (k % 2) as f32, 4),
                 )
             })
             .collect();
         check_sequence(name, name, (64, 40), &steps, &[]);
     }
+}
+
+#[test]
+fn a_moving_world() {
+    // The flyby: objects flying between mirrors, a swarm appearing at 4 s, a glass ball
+    // passing the camera, the camera on a keyed path; frames around the swarm's arrival,
+    // with a still camera for a while (the world still moves).
+    let scene = builtin("flyby").unwrap();
+    let set = settings(64, 36, 1.0, 6);
+    let mut steps: Vec<Step> = (0..8)
+        .map(|k| {
+            let t = 3.9 + f64::from(k) / 30.0;
+            (scene.camera_at_time(t), t, set)
+        })
+        .collect();
+    let still = scene.camera_at_time(4.2);
+    steps.extend((0..4).map(|k| (still, 4.2 + f64::from(k) / 30.0, set)));
+    check_sequence("flyby", "flyby", (64, 36), &steps, &[]);
 }
 
 #[test]

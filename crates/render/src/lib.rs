@@ -10,6 +10,7 @@ pub mod renderer;
 pub mod sampling;
 pub mod settings;
 pub mod stats;
+pub mod surface_motion;
 pub mod temporal;
 pub mod tonemap;
 pub mod two_level;

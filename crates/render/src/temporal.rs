@@ -34,6 +34,9 @@ pub const ID_MASK: u32 = 0x3fff_ffff;
 /// Tag bit of a geometry record whose reprojection is approximate (a dielectric or a curved
 /// mirror on the path).
 pub const APPROX_FLAG: u32 = 0x8000_0000;
+/// Tag bit of a geometry record seen through a mirror (its point is a mirror image, which
+/// does not follow its object's motion).
+pub const MIRROR_FLAG: u32 = 0x4000_0000;
 /// The branch random numbers of frame k of a history use sample indices
 /// `i + SAMPLE_STRIDE · (k mod 2^20)`, so that every frame chooses new dielectric branches
 /// (S is at most 4096, so indices of different frames never meet).
@@ -211,18 +214,24 @@ pub struct TemporalFrame {
     pub previous: Option<CameraFrame>,
     /// Whether the eye moved since the previous frame (the [`SPECULAR_CAP`] rule).
     pub eye_moved: bool,
-    /// Whether the camera frame is the previous one exactly: the history is then kept as it
-    /// is, pixel for pixel, without geometry tests or clamp.
+    /// Whether objects may have moved since the previous frame: the scene is animated and
+    /// its time changed (`crate::surface_motion` then says how each surface moved).
+    pub world_moved: bool,
+    /// The previous frame's scene time, s (with `previous`).
+    pub previous_time_s: f64,
+    /// Whether the camera frame is the previous one exactly and no object moved: the
+    /// history is then kept as it is, pixel for pixel, without geometry tests or clamp.
     pub still: bool,
 }
 
 /// The host side of a history: its size, the number of frames it holds and the last
-/// frame's camera. Both backends keep one and ask it for each frame's [`TemporalFrame`].
+/// frame's camera and scene time. Both backends keep one and ask it for each frame's
+/// [`TemporalFrame`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct HistoryClock {
     settings: TemporalSettings,
     frames: u32,
-    previous: Option<CameraFrame>,
+    previous: Option<(CameraFrame, f64)>,
 }
 
 impl HistoryClock {
@@ -247,20 +256,26 @@ impl HistoryClock {
     }
 
     /// The next frame's [`TemporalFrame`] for camera frame `current` (made for the output
-    /// size), counting the frame as accumulated.
-    pub fn advance(&mut self, current: CameraFrame) -> TemporalFrame {
+    /// size) at scene time `time_s` of a scene that is `animated` or not, counting the
+    /// frame as accumulated.
+    pub fn advance(&mut self, current: CameraFrame, time_s: f64, animated: bool) -> TemporalFrame {
         let k = self.frames;
         let j = jitter(k);
+        let previous = self.previous.map(|(camera, _)| camera);
+        let previous_time_s = self.previous.map_or(time_s, |(_, t)| t);
+        let world_moved = animated && previous_time_s != time_s;
         let frame = TemporalFrame {
             index: k,
             jitter: j,
             anchor: anchor(j),
-            previous: self.previous,
-            eye_moved: self.previous.is_some_and(|p| p.eye != current.eye),
-            still: self.previous == Some(current),
+            previous,
+            eye_moved: previous.is_some_and(|p| p.eye != current.eye),
+            world_moved,
+            previous_time_s,
+            still: previous == Some(current) && !world_moved,
         };
         self.frames = self.frames.wrapping_add(1);
-        self.previous = Some(current);
+        self.previous = Some((current, time_s));
         frame
     }
 }
@@ -388,19 +403,24 @@ mod tests {
         let a = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 60.0).frame(64, 32);
         let mut b = a;
         b.eye.x = 0.5;
-        let first = clock.advance(a);
+        let first = clock.advance(a, 0.0, true);
         assert_eq!(
             (first.index, first.previous, first.eye_moved),
             (0, None, false)
         );
-        assert!(!first.still);
-        let second = clock.advance(a);
+        assert!(!first.still && !first.world_moved);
+        let second = clock.advance(a, 0.0, true);
         assert_eq!((second.index, second.previous), (1, Some(a)));
         assert!(!second.eye_moved && second.still);
-        let third = clock.advance(b);
+        let third = clock.advance(b, 0.0, true);
         assert!(third.eye_moved && !third.still);
+        // Time runs: objects of an animated scene move, those of a static one do not.
+        let fourth = clock.advance(b, 0.5, true);
+        assert!(fourth.world_moved && !fourth.still && fourth.previous_time_s == 0.0);
+        let fifth = clock.advance(b, 1.0, false);
+        assert!(!fifth.world_moved && fifth.still);
         clock.reset();
-        let after = clock.advance(b);
+        let after = clock.advance(b, 1.0, false);
         assert_eq!((after.index, after.previous), (0, None));
     }
 

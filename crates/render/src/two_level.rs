@@ -14,9 +14,13 @@
 //!   plane wins a tie only against nothing.
 
 use crate::RenderError;
+use crate::temporal::ID_MASK;
 use glam::{DMat3, DVec3, Vec3, Vec3A};
 use steadyray_accel::Bounds;
 use steadyray_scene::{Pose, Scene, Shape};
+
+/// The most surface ids a scene may take: the temporal mode's ids below its miss id.
+const MAX_SURFACES: u32 = ID_MASK;
 
 /// One mesh object's triangles as its bottom level holds them.
 #[derive(Clone, Debug)]
@@ -32,12 +36,14 @@ pub struct MeshGeometry {
     pub baked: bool,
 }
 
-/// An infinite plane and its material.
+/// An infinite plane, its material and its surface id.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlaneLeaf {
     pub point: Vec3,
     pub normal: Vec3,
     pub material: u32,
+    /// Its surface id ([`SceneLayout::surface_count`]).
+    pub surface: u32,
 }
 
 /// One leaf of the top level.
@@ -115,6 +121,11 @@ pub struct SceneLayout {
     pub planes: Vec<PlaneLeaf>,
     /// Per object, its index in `meshes` (mesh objects only).
     object_mesh: Vec<Option<u32>>,
+    /// Per object, its first surface id: every object has one id per copy (a mesh with
+    /// instances one per instance, any other object one), numbered in object order, so an
+    /// id names the same surface in every frame (the temporal mode's surface id).
+    surface_base: Vec<u32>,
+    surface_count: u32,
     /// Whether any object moves, appears or disappears (else the leaves never change).
     pub animated: bool,
 }
@@ -129,13 +140,27 @@ impl SceneLayout {
             meshes: Vec::new(),
             planes: Vec::new(),
             object_mesh: Vec::with_capacity(scene.objects.len()),
+            surface_base: Vec::with_capacity(scene.objects.len()),
+            surface_count: 0,
             animated: scene.is_animated(),
         };
+        let mut next_surface = 0u32;
         for obj in &scene.objects {
             if obj.material >= scene.materials.len() {
                 return Err(bad(&obj.name, "material index out of range"));
             }
             let material = obj.material as u32;
+            let copies = match &obj.shape {
+                Shape::Mesh { instances, .. } => instances.len().max(1),
+                _ => 1,
+            };
+            let surface = next_surface;
+            next_surface = u32::try_from(copies)
+                .ok()
+                .and_then(|c| next_surface.checked_add(c))
+                .filter(|&n| n <= MAX_SURFACES)
+                .ok_or_else(|| bad(&obj.name, "too many objects and instances"))?;
+            layout.surface_base.push(surface);
             let mut mesh_index = None;
             match &obj.shape {
                 &Shape::Sphere { radius, .. } => {
@@ -156,6 +181,7 @@ impl SceneLayout {
                         point,
                         normal,
                         material,
+                        surface,
                     });
                 }
                 Shape::Mesh {
@@ -194,26 +220,41 @@ impl SceneLayout {
             }
             layout.object_mesh.push(mesh_index);
         }
+        layout.surface_count = next_surface;
         Ok(layout)
     }
 
+    /// How many surface ids the scene's objects take.
+    pub fn surface_count(&self) -> u32 {
+        self.surface_count
+    }
+
     /// The top level's leaves at scene time `t_s` (objects in order, those that do not exist
-    /// then left out; planes never), each with its world box, into `leaves` and `boxes`
-    /// (cleared first). `scene` must be the scene this layout was made from.
+    /// then left out; planes never), each with its world box and its surface id, into
+    /// `leaves`, `boxes` and `surfaces` (cleared first). `scene` must be the scene this
+    /// layout was made from.
     pub fn leaves_at(
         &self,
         scene: &Scene,
         t_s: f64,
         leaves: &mut Vec<Leaf>,
         boxes: &mut Vec<Bounds>,
+        surfaces: &mut Vec<u32>,
     ) {
         leaves.clear();
         boxes.clear();
-        for (obj, &mesh) in scene.objects.iter().zip(&self.object_mesh) {
+        surfaces.clear();
+        for ((obj, &mesh), &surface) in scene
+            .objects
+            .iter()
+            .zip(&self.object_mesh)
+            .zip(&self.surface_base)
+        {
             let material = obj.material as u32;
             match obj.pose_at(t_s) {
                 None | Some(Pose::Plane { .. }) => {}
                 Some(Pose::Sphere { center, radius }) => {
+                    surfaces.push(surface);
                     leaves.push(Leaf::Sphere {
                         center,
                         radius,
@@ -231,6 +272,7 @@ impl SceneLayout {
                 }) => {
                     // A moving quad squashed flat for a moment has nothing to hit.
                     if quad_has_area(edge_u, edge_v) {
+                        surfaces.push(surface);
                         leaves.push(Leaf::Quad {
                             corner,
                             edge_u,
@@ -251,7 +293,7 @@ impl SceneLayout {
                     if geometry.corners.is_empty() {
                         continue;
                     }
-                    for copy in copies {
+                    for (copy_index, copy) in (0u32..).zip(copies) {
                         let (instance, bounds) = if geometry.baked {
                             (
                                 Instance {
@@ -301,6 +343,7 @@ impl SceneLayout {
                         // A copy squashed flat or sent to infinity has nothing to hit.
                         let finite = bounds.min.is_finite() && bounds.max.is_finite();
                         if finite && invertible(&copy.matrix3) {
+                            surfaces.push(surface + copy_index);
                             leaves.push(Leaf::Instance(instance));
                             boxes.push(bounds);
                         }
@@ -380,8 +423,9 @@ mod tests {
         assert_eq!(layout.meshes[0].corners[0][1], placement.apply(Vec3::X));
         assert_eq!(layout.meshes[1].corners[0][1], Vec3::X);
 
-        let (mut leaves, mut boxes) = (Vec::new(), Vec::new());
-        layout.leaves_at(&s, 0.5, &mut leaves, &mut boxes);
+        let (mut leaves, mut boxes, mut ids) = (Vec::new(), Vec::new(), Vec::new());
+        layout.leaves_at(&s, 0.5, &mut leaves, &mut boxes, &mut ids);
+        assert_eq!(ids, [0, 1]);
         assert_eq!(leaves.len(), 2);
         let (Leaf::Instance(a), Leaf::Instance(b)) = (leaves[0], leaves[1]) else {
             panic!("two instances: {leaves:?}");
@@ -443,11 +487,15 @@ mod tests {
         let s = scene(vec![later, floor, ball]);
         let layout = SceneLayout::new(&s).unwrap();
         assert_eq!(layout.planes.len(), 1);
-        let (mut leaves, mut boxes) = (Vec::new(), Vec::new());
-        layout.leaves_at(&s, 0.0, &mut leaves, &mut boxes);
+        let (mut leaves, mut boxes, mut ids) = (Vec::new(), Vec::new(), Vec::new());
+        layout.leaves_at(&s, 0.0, &mut leaves, &mut boxes, &mut ids);
         assert_eq!(leaves.len(), 1);
         assert!(matches!(leaves[0], Leaf::Sphere { radius: 0.5, .. }));
-        layout.leaves_at(&s, 1.5, &mut leaves, &mut boxes);
+        // Surface ids stay with their objects whatever exists: later 0, floor 1, ball 2.
+        assert_eq!((ids.as_slice(), layout.planes[0].surface), (&[2][..], 1));
+        assert_eq!(layout.surface_count(), 3);
+        layout.leaves_at(&s, 1.5, &mut leaves, &mut boxes, &mut ids);
+        assert_eq!(ids, [0, 2]);
         assert!(matches!(leaves[0], Leaf::Quad { .. }));
         assert!(matches!(leaves[1], Leaf::Sphere { .. }));
         assert_eq!(boxes[1].min, Vec3::new(-0.5, 0.5, -0.5));

@@ -33,6 +33,7 @@ fn ladder() -> Ladder {
             scale: 1.0,
         },
         views: 1,
+        temporal_frames: None,
         points,
     }
 }

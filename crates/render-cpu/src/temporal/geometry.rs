@@ -7,7 +7,7 @@ use crate::integrator::{PathHit, PathSink};
 use crate::ray::Ray;
 use crate::world::World;
 use glam::Vec3A;
-use steadyray_render::temporal::{APPROX_FLAG, MISS_ID, dot3};
+use steadyray_render::temporal::{APPROX_FLAG, MIRROR_FLAG, MISS_ID, dot3};
 
 /// One pixel's geometry, laid out as the GPU's two `vec4`s.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -19,7 +19,8 @@ pub(crate) struct Geometry {
     /// the mirrors (zero for a miss).
     pub n: [f32; 3],
     /// The surface id (`MISS_ID` for a miss), with `APPROX_FLAG` set when a dielectric or a
-    /// curved mirror makes the reprojection approximate.
+    /// curved mirror makes the reprojection approximate and `MIRROR_FLAG` when the surface is
+    /// seen through a mirror.
     pub tag: u32,
 }
 
@@ -36,6 +37,7 @@ pub(crate) struct GeometrySink<'a, S> {
     /// Rows of the product of the mirrors' reflections so far, which takes a normal seen
     /// through them back to the mirror image.
     mirrors: [[f32; 3]; 3],
+    mirrored: bool,
     approx: bool,
     record: Option<Geometry>,
 }
@@ -57,6 +59,7 @@ impl<'a, S: PathSink> GeometrySink<'a, S> {
             dir,
             length: 0.0,
             mirrors: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            mirrored: false,
             approx: false,
             record: None,
         }
@@ -68,7 +71,9 @@ impl<'a, S: PathSink> GeometrySink<'a, S> {
     }
 
     fn tag(&self, id: u32) -> u32 {
-        if self.approx { id | APPROX_FLAG } else { id }
+        let approx = if self.approx { APPROX_FLAG } else { 0 };
+        let mirrored = if self.mirrored { MIRROR_FLAG } else { 0 };
+        id | approx | mirrored
     }
 }
 
@@ -90,6 +95,7 @@ impl<S: PathSink> PathSink for GeometrySink<'_, S> {
         self.length += hit.t;
         let n = hit.normal.to_array();
         if hit.reflects {
+            self.mirrored = true;
             self.approx |= !self.world.is_flat(hit.prim);
             self.mirrors = self.mirrors.map(|row| reflect(row, n));
             return;

@@ -8,6 +8,7 @@ pub(crate) use geometry::{Geometry, GeometrySink};
 
 use rayon::prelude::*;
 use resolve::{Axis, Inputs, Prepared};
+use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{HistoryClock, TemporalFrame};
 use steadyray_render::{Image, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
@@ -20,6 +21,8 @@ pub(crate) struct History {
     /// The frame as rendered (its own size), then resolved into the history.
     pub low: Vec<[f32; 3]>,
     pub low_geometry: Vec<Geometry>,
+    /// How each surface moved since the previous frame (while the world moves).
+    pub moves: Vec<SurfaceMove>,
     /// What the resolve needs of each frame pixel, and of each history column and row.
     prepared: Vec<Prepared>,
     columns: Axis,
@@ -40,6 +43,7 @@ impl History {
             clock: HistoryClock::new(settings),
             low: Vec::new(),
             low_geometry: Vec::new(),
+            moves: Vec::new(),
             prepared: Vec::new(),
             columns: Axis::default(),
             rows: Axis::default(),
@@ -70,7 +74,7 @@ impl History {
             .zip(self.low_geometry.par_iter())
             .with_min_len(1024)
             .for_each(|((p, &colour), geometry)| {
-                *p = Inputs::prepare(&camera, &frame, size, colour, geometry);
+                *p = Inputs::prepare(&camera, &frame, size, &self.moves, colour, geometry);
             });
         self.columns.fill(size.0, low_size.0, frame.anchor[0]);
         self.rows.fill(size.1, low_size.1, frame.anchor[1]);

@@ -7,9 +7,10 @@
 //! changes no result.
 
 use super::geometry::Geometry;
+use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{
-    APPROX_FLAG, HISTORY_CAP, ID_MASK, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP, STILL_CAP,
-    TemporalFrame, catmull_rom, covering, dot3, floor, landed_from, project,
+    APPROX_FLAG, HISTORY_CAP, ID_MASK, MIRROR_FLAG, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP,
+    STILL_CAP, TemporalFrame, catmull_rom, covering, dot3, floor, landed_from, project,
 };
 use steadyray_scene::camera::CameraFrame;
 
@@ -17,10 +18,15 @@ use steadyray_scene::camera::CameraFrame;
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Prepared {
     /// Where its record's point was in the previous frame minus where it is now, in history
-    /// pixels; None when either position is behind its camera.
+    /// pixels; None when either position is behind its camera or its surface is new.
     motion: Option<[f32; 2]>,
-    /// Its record's point's distance from the previous eye.
+    /// Its record's point and normal as they were in the previous frame (moved back with
+    /// its object), and the point's distance from the previous eye.
+    previous_q: [f32; 3],
+    previous_n: [f32; 3],
     distance: f32,
+    /// Whether its surface existed in the previous frame.
+    existed: bool,
     /// Whether its colour is finite.
     finite: bool,
 }
@@ -62,6 +68,19 @@ pub(crate) struct Inputs<'a> {
     pub frame: TemporalFrame,
 }
 
+/// How the surface of record `g` moved since the previous frame: a surface seen directly in
+/// a world that moved follows its object; anything else is taken as still (seen through a
+/// mirror, its image does not follow its object: that is left to the cap and the clamp).
+pub(crate) fn move_of(g: &Geometry, frame: &TemporalFrame, moves: &[SurfaceMove]) -> SurfaceMove {
+    if !frame.world_moved || g.q[3] == 0.0 || g.tag & MIRROR_FLAG != 0 {
+        return SurfaceMove::Still;
+    }
+    moves
+        .get((g.tag & ID_MASK) as usize)
+        .copied()
+        .unwrap_or_default()
+}
+
 /// The frame's 3×3 pixels around a history pixel: the range of their finite colours and
 /// their indices.
 struct Neighbourhood {
@@ -84,27 +103,42 @@ fn distance(a: [f32; 4], b: [f32; 3]) -> f32 {
 }
 
 impl Inputs<'_> {
-    /// What the resolve needs of frame pixel `i`, given the frame's camera frame and the
-    /// history's size.
+    /// What the resolve needs of a frame pixel, given the frame's camera frame, the
+    /// history's size and how the surfaces moved.
     pub fn prepare(
         camera: &CameraFrame,
         frame: &TemporalFrame,
         size: (u32, u32),
+        moves: &[SurfaceMove],
         colour: [f32; 3],
-        geometry: &Geometry,
+        g: &Geometry,
     ) -> Prepared {
-        let motion = frame.previous.as_ref().and_then(|previous| {
-            let before = project(previous, geometry.q, size.0, size.1)?;
-            let now = project(camera, geometry.q, size.0, size.1)?;
-            Some([before[0] - now[0], before[1] - now[1]])
-        });
+        let q = [g.q[0], g.q[1], g.q[2]];
+        let (previous_q, previous_n, existed) = match move_of(g, frame, moves) {
+            SurfaceMove::Still => (q, g.n, true),
+            SurfaceMove::Moved(map) => (map.point(q), map.normal(g.n), true),
+            SurfaceMove::New => (q, g.n, false),
+        };
+        let motion = frame
+            .previous
+            .as_ref()
+            .filter(|_| existed)
+            .and_then(|previous| {
+                let q_before = [previous_q[0], previous_q[1], previous_q[2], g.q[3]];
+                let before = project(previous, q_before, size.0, size.1)?;
+                let now = project(camera, g.q, size.0, size.1)?;
+                Some([before[0] - now[0], before[1] - now[1]])
+            });
         let eye = frame
             .previous
             .as_ref()
             .map_or([0.0; 3], |p| p.eye.to_array());
         Prepared {
             motion,
-            distance: distance(geometry.q, eye),
+            previous_q,
+            previous_n,
+            distance: distance([previous_q[0], previous_q[1], previous_q[2], 1.0], eye),
+            existed,
             finite: finite(colour),
         }
     }
@@ -142,9 +176,14 @@ impl Inputs<'_> {
         } else {
             None
         };
-        let cap = if self.frame.still {
+        let frame = &self.frame;
+        let approx = geometry.tag & APPROX_FLAG != 0;
+        let mirrored = geometry.tag & MIRROR_FLAG != 0;
+        let cap = if frame.still {
             STILL_CAP
-        } else if geometry.tag & APPROX_FLAG != 0 && self.frame.eye_moved {
+        } else if (approx && (frame.eye_moved || frame.world_moved))
+            || (mirrored && frame.world_moved)
+        {
             SPECULAR_CAP
         } else {
             HISTORY_CAP
@@ -197,20 +236,23 @@ impl Inputs<'_> {
         near
     }
 
-    /// Whether the history's surface `old` is one the neighbourhood sees: the same surface
-    /// id and, for a point, within the tolerance of its tangent plane and facing alike.
+    /// Whether the history's surface `old` is one the neighbourhood sees (as it was in the
+    /// previous frame): the same surface id and, for a point, within the tolerance of its
+    /// tangent plane and facing alike.
     fn seen_nearby(&self, near: &Neighbourhood, old: &Geometry) -> bool {
         near.pixels[..near.count].iter().any(|&i| {
             let g = &self.low_geometry[i as usize];
-            if g.tag & ID_MASK != old.tag & ID_MASK {
+            let p = &self.prepared[i as usize];
+            if g.tag & ID_MASK != old.tag & ID_MASK || !p.existed {
                 return false;
             }
             if g.q[3] == 0.0 {
                 return true;
             }
-            let off = [old.q[0] - g.q[0], old.q[1] - g.q[1], old.q[2] - g.q[2]];
-            dot3(off, g.n).abs() <= PLANE_TOLERANCE * self.prepared[i as usize].distance
-                && dot3(g.n, old.n) >= NORMAL_COS
+            let q = p.previous_q;
+            let off = [old.q[0] - q[0], old.q[1] - q[1], old.q[2] - q[2]];
+            dot3(off, p.previous_n).abs() <= PLANE_TOLERANCE * p.distance
+                && dot3(p.previous_n, old.n) >= NORMAL_COS
         })
     }
 

@@ -41,6 +41,11 @@ const NORMAL_COS: f32 = 0.5;
 const MISS_ID: u32 = 0x3fffffffu;
 const ID_MASK: u32 = 0x3fffffffu;
 const APPROX_FLAG: u32 = 0x80000000u;
+const MIRROR_FLAG: u32 = 0x40000000u;
+// SurfaceMotion.kind.
+const SURFACE_STILL: u32 = 0u;
+const SURFACE_MOVED: u32 = 1u;
+const SURFACE_NEW: u32 = 2u;
 
 const MAT_DIFFUSE: u32 = 0u;
 const MAT_MIRROR: u32 = 1u;
@@ -109,9 +114,24 @@ struct TemporalParams {
     has_history: u32,
     eye_moved: u32,
     still: u32,
+    world_moved: u32,
+    surface_count: u32,
     pad0: u32,
+}
+
+// How a surface moved since the previous frame (GpuSurfaceMotion,
+// steadyray_render::surface_motion): kind SURFACE_STILL, SURFACE_MOVED (the point rows p_*
+// and the normal rows n_* map it back) or SURFACE_NEW.
+struct SurfaceMotion {
+    p_x: vec4<f32>,
+    p_y: vec4<f32>,
+    p_z: vec4<f32>,
+    n_x: vec3<f32>,
+    kind: u32,
+    n_y: vec3<f32>,
+    pad0: u32,
+    n_z: vec3<f32>,
     pad1: u32,
-    pad2: u32,
 }
 
 // An analytic shape (see GpuShape in src/layout.rs). Sphere: p0 centre, s0 = r²,

@@ -24,3 +24,5 @@
 @group(0) @binding(11) var<storage, read> top_nodes: array<BvhNode>;
 @group(0) @binding(12) var<storage, read> top_leaves: array<TopLeaf>;
 @group(0) @binding(13) var<storage, read> instances: array<Instance>;
+// The temporal mode's surface ids of the frame's shapes, then of its instances.
+@group(0) @binding(14) var<storage, read> surface_ids: array<u32>;

@@ -18,6 +18,9 @@
 @group(0) @binding(6) var<storage, read_write> geometry_out: array<vec4<u32>>;
 // The new history tone-mapped, one packed RGBA8 per pixel.
 @group(0) @binding(7) var<storage, read_write> history_srgb8: array<u32>;
+// How each surface moved since the previous frame, by surface id (read while the world
+// moves).
+@group(0) @binding(8) var<storage, read> surface_moves: array<SurfaceMotion>;
 
 fn dot3(a: vec3<f32>, b: vec3<f32>) -> f32 {
     return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -43,6 +46,40 @@ fn frame_record(i: u32) -> Record {
 fn history_record(i: u32) -> Record {
     let b = geometry_in[2u * i + 1u];
     return Record(bitcast<vec4<f32>>(geometry_in[2u * i]), bitcast<vec3<f32>>(b.xyz), b.w);
+}
+
+// A record's point and normal as they were in the previous frame, and whether its surface
+// existed then.
+struct Before {
+    q: vec4<f32>,
+    n: vec3<f32>,
+    existed: bool,
+}
+
+// How record g's surface moved: a surface seen directly in a world that moved follows its
+// object; anything else is taken as still (render-cpu's resolve::move_of).
+fn before_of(g: Record) -> Before {
+    let id = g.tag & ID_MASK;
+    let direct = g.q.w != 0.0 && (g.tag & MIRROR_FLAG) == 0u;
+    if params.world_moved == 0u || !direct || id >= params.surface_count {
+        return Before(g.q, g.n, true);
+    }
+    let m = surface_moves[id];
+    if m.kind == SURFACE_NEW {
+        return Before(g.q, g.n, false);
+    }
+    if m.kind != SURFACE_MOVED {
+        return Before(g.q, g.n, true);
+    }
+    let q = g.q.xyz;
+    let p = vec3<f32>(
+        m.p_x.x * q.x + m.p_x.y * q.y + m.p_x.z * q.z + m.p_x.w,
+        m.p_y.x * q.x + m.p_y.y * q.y + m.p_y.z * q.z + m.p_y.w,
+        m.p_z.x * q.x + m.p_z.y * q.y + m.p_z.z * q.z + m.p_z.w,
+    );
+    let n = vec3<f32>(dot3(m.n_x, g.n), dot3(m.n_y, g.n), dot3(m.n_z, g.n));
+    let inv = 1.0 / sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    return Before(vec4<f32>(p, g.q.w), n * inv, true);
 }
 
 // floor((x + anchor) · full / low).
@@ -142,13 +179,17 @@ fn seen_nearby(old: Record) -> bool {
         if (g.tag & ID_MASK) != (old.tag & ID_MASK) {
             continue;
         }
+        let b = before_of(g);
+        if !b.existed {
+            continue;
+        }
         if g.q.w == 0.0 {
             return true;
         }
-        let e = g.q.xyz - params.previous.eye;
+        let e = b.q.xyz - params.previous.eye;
         let d = sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
-        let off = old.q.xyz - g.q.xyz;
-        if abs(dot3(off, g.n)) <= PLANE_TOLERANCE * d && dot3(g.n, old.n) >= NORMAL_COS {
+        let off = old.q.xyz - b.q.xyz;
+        if abs(dot3(off, b.n)) <= PLANE_TOLERANCE * d && dot3(b.n, old.n) >= NORMAL_COS {
             return true;
         }
     }
@@ -180,10 +221,14 @@ struct Kept {
     age: f32,
 }
 
-fn history_at(x: u32, y: u32, q: vec4<f32>) -> Kept {
+fn history_at(x: u32, y: u32, g: Record) -> Kept {
     let none = Kept(false, vec3<f32>(0.0), 0.0);
-    let before = project(params.previous, q);
-    let now = project(params.current, q);
+    let b = before_of(g);
+    if !b.existed {
+        return none;
+    }
+    let before = project(params.previous, b.q);
+    let now = project(params.current, g.q);
     if before.z == 0.0 || now.z == 0.0 {
         return none;
     }
@@ -273,15 +318,19 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
         kept = Kept(true, h.xyz, h.w);
     } else if params.has_history != 0u {
         gather_neighbourhood(cx, cy);
-        kept = history_at(x, y, g.q);
+        kept = history_at(x, y, g);
         if kept.valid && near_has_range {
             kept.colour = min(max(kept.colour, near_lo), near_hi);
         }
     }
+    let approx = (g.tag & APPROX_FLAG) != 0u;
+    let mirrored = (g.tag & MIRROR_FLAG) != 0u;
+    let eye_moved = params.eye_moved != 0u;
+    let world_moved = params.world_moved != 0u;
     var cap = HISTORY_CAP;
     if params.still != 0u {
         cap = STILL_CAP;
-    } else if (g.tag & APPROX_FLAG) != 0u && params.eye_moved != 0u {
+    } else if (approx && (eye_moved || world_moved)) || (mirrored && world_moved) {
         cap = SPECULAR_CAP;
     }
     var out = vec4<f32>(0.0);

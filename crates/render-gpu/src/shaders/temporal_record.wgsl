@@ -10,6 +10,7 @@ var<private> record_dir: vec3<f32>;
 // Distance travelled through the mirrors so far.
 var<private> record_length: f32;
 var<private> record_approx: bool;
+var<private> record_mirrored: bool;
 // Rows of the product of the mirrors' reflections so far.
 var<private> record_row0: vec3<f32>;
 var<private> record_row1: vec3<f32>;
@@ -32,6 +33,7 @@ fn record_begin(on: bool, eye: vec3<f32>, dir: vec3<f32>) {
         record_dir = dir;
         record_length = 0.0;
         record_approx = false;
+        record_mirrored = false;
         record_row0 = vec3<f32>(1.0, 0.0, 0.0);
         record_row1 = vec3<f32>(0.0, 1.0, 0.0);
         record_row2 = vec3<f32>(0.0, 0.0, 1.0);
@@ -44,14 +46,13 @@ fn reflect_about(v: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
     return v - k * m;
 }
 
-// The surface id of the primitive of `hit`: its shape index (the planes, then the frame's
-// spheres and quads), or one id after the shapes for every mesh triangle.
+// The surface id of the object (or copy) of `hit`, the same in every frame.
 fn surface_id(hit: Hit) -> u32 {
-    return select(frame.shape_count, hit.prim, hit.inst == NO_INSTANCE);
+    return surface_ids[select(frame.shape_count + hit.inst, hit.prim, hit.inst == NO_INSTANCE)];
 }
 
 fn tag_of(id: u32) -> u32 {
-    return select(id, id | APPROX_FLAG, record_approx);
+    return id | select(0u, APPROX_FLAG, record_approx) | select(0u, MIRROR_FLAG, record_mirrored);
 }
 
 // A ray of the path made `hit` with facing normal n; the path goes on by a mirror
@@ -62,6 +63,7 @@ fn record_hit(hit: Hit, n: vec3<f32>, reflects: bool, dielectric: bool) {
     }
     record_length += hit.t;
     if reflects {
+        record_mirrored = true;
         let flat = hit.inst == NO_INSTANCE && shapes[hit.prim].kind != SHAPE_SPHERE;
         record_approx = record_approx || !flat;
         record_row0 = reflect_about(record_row0, n);
