@@ -12,7 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
 use steadyray_quality::{Rgb8Image, flip};
-use steadyray_render::{RenderSettings, Renderer};
+use steadyray_render::{RenderSettings, Renderer, TemporalSettings};
 use steadyray_scene::Scene;
 
 #[derive(Debug, Args)]
@@ -57,6 +57,14 @@ pub struct CalibrateArgs {
     /// Where to write the ladder.
     #[arg(short = 'o', long = "out", default_value = "ladder.json")]
     pub out: PathBuf,
+    /// Calibrate for the temporal mode (docs/temporal.md): each setting renders FRAMES frames
+    /// leading up to each view (1/--rate s apart on the path) into a history and is measured
+    /// on it, so the ladder ranks the settings by what they look like with history.
+    #[arg(long, value_name = "FRAMES")]
+    pub temporal: Option<u32>,
+    /// With --temporal: frames per second of the frames leading up to each view.
+    #[arg(long, default_value_t = 60.0, requires = "temporal")]
+    pub rate: f64,
 }
 
 /// What to measure: the grid of settings, the views and the reference.
@@ -70,6 +78,8 @@ pub struct Plan {
     pub depths: Vec<u32>,
     pub scales: Vec<f32>,
     pub reference: Reference,
+    /// The temporal mode's frames before each view and their rate (frames per second).
+    pub temporal: Option<(u32, f64)>,
 }
 
 impl Plan {
@@ -101,15 +111,17 @@ struct Sample {
     image: Rgb8Image,
 }
 
-/// Renders `scene` from frame `k` at one setting and returns what it cost and showed.
+/// Renders `scene` at frame `k` at one setting and returns what the frame cost and showed:
+/// one frame, or with `temporal` (frames, rate) the history after that many frames leading
+/// up to it.
 fn measure(
     renderer: &mut dyn Renderer,
     scene: &Scene,
     plan: &Plan,
     k: u32,
     (spp, depth, scale): (f32, u32, f32),
+    temporal: Option<(u32, f64)>,
 ) -> Result<Sample> {
-    let camera = scene.camera_at(k, plan.frames);
     let time_s = scene.path.frame_time(k, plan.frames);
     let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
     let settings = RenderSettings {
@@ -118,9 +130,27 @@ fn measure(
         spp,
         max_depth: depth,
     };
-    let stats = renderer
-        .render(&camera, time_s, &settings)
-        .with_context(|| format!("frame {k} at S={spp} R={depth} scale={scale}"))?;
+    let history = TemporalSettings {
+        width: plan.width,
+        height: plan.height,
+    };
+    renderer.set_temporal(temporal.map(|_| history))?;
+    let (frames, rate) = temporal.unwrap_or((1, 1.0));
+    let mut stats = None;
+    for i in 0..frames {
+        let t = time_s - f64::from(frames - 1 - i) / rate;
+        let camera = if i + 1 == frames {
+            scene.camera_at(k, plan.frames)
+        } else {
+            scene.camera_at_time(t)
+        };
+        stats = Some(
+            renderer
+                .render(&camera, t, &settings)
+                .with_context(|| format!("frame {k} at S={spp} R={depth} scale={scale}"))?,
+        );
+    }
+    let stats = stats.context("no frame rendered")?;
     let image = shown(&renderer.read_image()?, plan.width, plan.height)?;
     Ok(Sample {
         rays: stats.rays.total() as f64,
@@ -140,6 +170,13 @@ pub fn calibrate(
     if plan.views == 0 || plan.frames == 0 {
         bail!("--views and --frames must be at least 1");
     }
+    if let Some((frames, rate)) = plan.temporal
+        && (frames == 0 || !(rate.is_finite() && rate > 0.0))
+    {
+        bail!(
+            "--temporal needs at least 1 frame and --rate a positive number of frames per second"
+        );
+    }
     let views = plan.view_frames();
     let settings = plan.settings();
     if settings.is_empty() {
@@ -149,13 +186,13 @@ pub fn calibrate(
     let mut sums = vec![(0.0, 0.0, 0.0); settings.len() + 1];
     for &k in &views {
         progress.set_message(format!("view {k}: reference"));
-        let reference = measure(renderer, scene, plan, k, (r.spp, r.depth, r.scale))?;
+        let reference = measure(renderer, scene, plan, k, (r.spp, r.depth, r.scale), None)?;
         let top = &mut sums[settings.len()];
         top.0 += reference.rays;
         top.1 += reference.ms;
         progress.set_message(format!("view {k}"));
         for (i, &setting) in settings.iter().enumerate() {
-            let s = measure(renderer, scene, plan, k, setting)?;
+            let s = measure(renderer, scene, plan, k, setting, plan.temporal)?;
             let f = flip(&reference.image, &s.image)?.mean();
             sums[i].0 += s.rays;
             sums[i].1 += s.ms;
@@ -183,6 +220,7 @@ pub fn calibrate(
         resolution: [plan.width, plan.height],
         reference: r,
         views: plan.views,
+        temporal_frames: plan.temporal.map(|(frames, _)| frames),
         points: pareto_front(measured),
     };
     ladder.validate().map_err(anyhow::Error::msg)?;
@@ -207,6 +245,7 @@ pub fn run(args: &CalibrateArgs) -> Result<()> {
             depth: args.reference_depth,
             scale: 1.0,
         },
+        temporal: args.temporal.map(|frames| (frames, args.rate)),
     };
     let progress = ProgressBar::new(plan.settings().len() as u64 * u64::from(plan.views));
     progress.set_style(
@@ -260,6 +299,7 @@ mod tests {
                 depth: 4,
                 scale: 1.0,
             },
+            temporal: None,
         };
         let ladder = calibrate(&mut renderer, &scene, &plan, &ProgressBar::hidden()).unwrap();
         let p = &ladder.points;
@@ -275,5 +315,49 @@ mod tests {
             (8.0, 4, 1.0, 0.0)
         );
         assert!(p[0].flip > 0.0);
+        assert_eq!(ladder.temporal_frames, None);
+    }
+
+    #[test]
+    fn a_temporal_ladder_measures_the_history() {
+        let scene = steadyray_scene::load_scene("corridor").unwrap();
+        let mut renderer = CpuRenderer::new();
+        renderer.load_scene(&scene).unwrap();
+        let plan = |temporal| Plan {
+            width: 32,
+            height: 18,
+            frames: 8,
+            views: 2,
+            spp: vec![1.0],
+            depths: vec![3],
+            scales: vec![1.0],
+            reference: Reference {
+                spp: 16.0,
+                depth: 3,
+                scale: 1.0,
+            },
+            temporal,
+        };
+        let single = calibrate(&mut renderer, &scene, &plan(None), &ProgressBar::hidden()).unwrap();
+        let history = calibrate(
+            &mut renderer,
+            &scene,
+            &plan(Some((12, 60.0))),
+            &ProgressBar::hidden(),
+        )
+        .unwrap();
+        assert_eq!(history.temporal_frames, Some(12));
+        // S = 1 with 12 frames of history looks better than one frame of it.
+        assert!(
+            history.points[0].flip < single.points[0].flip,
+            "{history:?} vs {single:?}"
+        );
+        let bad = calibrate(
+            &mut renderer,
+            &scene,
+            &plan(Some((0, 60.0))),
+            &ProgressBar::hidden(),
+        );
+        assert!(bad.is_err());
     }
 }
