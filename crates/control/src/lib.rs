@@ -52,8 +52,9 @@
 //!   `calibrate --motion`) it picks, at each frame's measured speed, the frame time whose
 //!   best fitting ladder point looks best, and lets an inner `predictive` hold that time;
 //!   changes of the target are held `hold_ms`=500 and need a `margin`=0.02 of the model's
-//!   spread; the speed decided on falls with a time constant `fall_ms`=500. `hand_over`=1 ms, `width`=0.3 shape each frame time's band; the other options
-//!   are `predictive`'s.
+//!   spread; the speed decided on falls with a time constant `fall_ms`=300. `hand_over`=1 ms,
+//!   `slack`=0.05 and `width`=0.2 shape each frame time's band (as `bench --band refresh`);
+//!   the other options are `predictive`'s.
 //!
 //! # Refused reports
 //!

@@ -24,8 +24,10 @@
 //!    (the cheapest predicted over its band) gives way at once.
 //!
 //! The band for a frame time T (so that a frame started at a refresh is handed over before
-//! the refresh T later) is [T − `hand_over` − `width`·T, T − `hand_over`]. The setup's band is
-//! not used: the bands come from the model's frame times. The target starts at the longest
+//! the refresh T later, with `slack` of T kept free for timing noise) is
+//! [Tmax − `width`·T, Tmax] with Tmax = T·(1 − `slack`) − `hand_over`: the same band as
+//! `bench --band refresh[:M]` (`steadyray_display::aligned_band`) for T = M refreshes. The
+//! setup's band is not used: the bands come from the model's frame times. The target starts at the longest
 //! frame time (a still picture is best shown at the highest quality).
 //!
 //! Why a controller of its own and not a target mode of `predictive`: the choice of a frame
@@ -35,7 +37,8 @@
 //! as it keeps any band.
 //!
 //! Options: `model`=PATH (a `motion.json` from `calibrate --motion`, required),
-//! `hold_ms`=500, `margin`=0.02, `fall_ms`=500, `hand_over`=1 (ms), `width`=0.3, and every option of
+//! `hold_ms`=500, `margin`=0.02, `fall_ms`=300, `hand_over`=1 (ms), `slack`=0.05,
+//! `width`=0.2, and every option of
 //! `predictive` but `ladder` (the ladder is the model's).
 
 use crate::band::Band;
@@ -59,12 +62,15 @@ pub struct PerceptualParams {
     pub margin: f64,
     /// `fall_ms`: the time constant with which the speed decided on falls toward a lower
     /// measured speed (display time, each frame at its target time); it rises at once.
-    /// Default 500.
+    /// Default 300.
     pub fall_ms: f64,
     /// `hand_over`: the time a frame takes from the end of its render to the display, ms:
     /// the band for frame time T ends at T minus it. Default 1.
     pub hand_over_ms: f64,
-    /// `width`: the band's width as a fraction of its frame time. Default 0.3.
+    /// `slack`: the fraction of the frame time kept free under it for timing noise.
+    /// Default 0.05.
+    pub slack: f64,
+    /// `width`: the band's width as a fraction of its frame time. Default 0.2.
     pub width: f64,
     /// The inner predictive controller's options (its `ladder` is the model's).
     pub predictive: PredictiveParams,
@@ -76,15 +82,16 @@ impl Default for PerceptualParams {
             model: None,
             hold_ms: 500.0,
             margin: 0.02,
-            fall_ms: 500.0,
+            fall_ms: 300.0,
             hand_over_ms: 1.0,
-            width: 0.3,
+            slack: 0.05,
+            width: 0.2,
             predictive: PredictiveParams::default(),
         }
     }
 }
 
-const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, width, and predictive's options \
+const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, slack, width, and predictive's options \
                                (order, target, deadband, min_reach, max_raise, trend, \
                                measured_cut, forgetting, outlier_k, confirm)";
 
@@ -107,6 +114,7 @@ impl PerceptualParams {
             "margin" => self.margin = parse_option(key, value, within(0.0, 1.0))?,
             "fall_ms" => self.fall_ms = parse_option(key, value, within(0.0, 1e6))?,
             "hand_over" => self.hand_over_ms = parse_option(key, value, within(0.0, 1e3))?,
+            "slack" => self.slack = parse_option(key, value, within(0.0, 0.5))?,
             "width" => self.width = parse_option(key, value, within(0.05, 0.9))?,
             "ladder" => {
                 return Err(ConfigError::BadOption {
@@ -174,14 +182,14 @@ impl Perceptual {
             .frame_times_ms
             .iter()
             .map(|&t| {
-                let tmax = t - params.hand_over_ms;
+                let tmax = t * (1.0 - params.slack) - params.hand_over_ms;
                 Band::new(tmax - params.width * t, tmax).map_err(|_| ConfigError::BadOption {
                     key: "hand_over".into(),
                     value: params.hand_over_ms.to_string(),
                     why: format!(
-                        "frame time {t} ms leaves no band after a {} ms hand-over and a width \
-                         of {} of the frame time",
-                        params.hand_over_ms, params.width
+                        "frame time {t} ms leaves no band after a {} ms hand-over, a slack of \
+                         {} and a width of {} of the frame time",
+                        params.hand_over_ms, params.slack, params.width
                     ),
                 })
             })

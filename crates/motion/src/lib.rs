@@ -11,6 +11,10 @@
 //! (`FrameReport::speed_deg_s`): the speed of what most of the picture shows, which is what
 //! the stimuli of `calibrate --motion` are measured by as well.
 //!
+//! [`MotionTracker`] follows a run: a frame that shows the same world time as the one before
+//! it (the real clock renders two frames at one time when the first is shown a refresh early)
+//! reports that frame's motion rather than none.
+//!
 //! Objects are still in today's scenes: the camera's change is the only motion. The probe
 //! runs outside the render's timing (it is not part of Tp); on the corridor it traces 576 rays
 //! per frame.
@@ -18,5 +22,5 @@
 pub mod probe;
 pub mod speed;
 
-pub use probe::{GRID_COLUMNS, MotionProbe, Shot};
+pub use probe::{GRID_COLUMNS, MotionProbe, MotionTracker, Shot};
 pub use speed::{ScreenSpeed, Seen, sample_speeds};

@@ -92,6 +92,32 @@ impl MotionProbe {
     }
 }
 
+/// Follows a sequence of frames and gives each one's motion on screen since the frame before
+/// it: a frame showing the same time as the one before (a repeated world time) moves as that
+/// one did; a frame showing an earlier time (a new run, a cut) starts over at 0.
+pub struct MotionTracker {
+    probe: MotionProbe,
+    last: Option<(Shot, ScreenSpeed)>,
+}
+
+impl MotionTracker {
+    /// A tracker with no frame yet.
+    pub fn new(probe: MotionProbe) -> Self {
+        Self { probe, last: None }
+    }
+
+    /// The motion on screen of the frame `now`.
+    pub fn next(&mut self, now: Shot) -> Result<ScreenSpeed, RenderError> {
+        let speed = match self.last {
+            Some((before, speed)) if now.time_s == before.time_s => speed,
+            Some((before, _)) if now.time_s > before.time_s => self.probe.measure(&before, &now)?,
+            _ => ScreenSpeed::default(),
+        };
+        self.last = Some((now, speed));
+        Ok(speed)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -151,6 +177,25 @@ mod tests {
         assert!(hold < 1e-3, "{hold}");
         assert!(slow > 4.0 && slow < 9.0, "{slow}");
         assert!(fast > 70.0 && fast < 120.0, "{fast}");
+    }
+
+    #[test]
+    fn a_tracker_keeps_the_motion_over_a_repeated_time_and_restarts_on_an_earlier_one() {
+        let (scene, probe) = corridor_probe();
+        let mut tracker = MotionTracker::new(probe);
+        let first = tracker.next(shot(&scene, 1.0)).unwrap();
+        assert_eq!(
+            first,
+            ScreenSpeed::default(),
+            "nothing before the first frame"
+        );
+        let moving = tracker.next(shot(&scene, 1.05)).unwrap();
+        assert!(moving.mean_deg_s > 10.0, "{moving:?}");
+        assert_eq!(tracker.next(shot(&scene, 1.05)).unwrap(), moving);
+        assert_eq!(
+            tracker.next(shot(&scene, 0.0)).unwrap(),
+            ScreenSpeed::default()
+        );
     }
 
     #[test]

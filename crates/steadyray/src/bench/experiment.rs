@@ -60,6 +60,7 @@ pub fn run_controller(
     let (width, height) = source.resolution();
     for k in 0..sweep.frames {
         let q = controller.quality();
+        let target_ms = controller.target_frame_ms();
         let m = source
             .frame(sweep.at(k), q)
             .with_context(|| format!("{name}: frame {k} at {q} failed"))?;
@@ -88,6 +89,7 @@ pub fn run_controller(
         }
         let t_s = source.path_duration_s() * f64::from(k) / f64::from(sweep.frames);
         rows.push(FrameRow {
+            target_ms,
             flip,
             ..FrameRow::measured(k, t_s, &m, sweep.band)
         });

@@ -38,9 +38,12 @@ use report::{RealContext, RunContext, quality_label};
 use source::{FrameSource, RendererSource};
 use std::collections::BTreeSet;
 use std::path::PathBuf;
-use steadyray_control::{Band, CONTROLLER_NAMES, Controller, Quality, Setup, from_name};
+use steadyray_control::{
+    Band, CONTROLLER_NAMES, Controller, Quality, Setup, from_name, parse_options,
+};
 use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{RealClock, ViewingSetup, aligned_band};
+use steadyray_motion::{MotionProbe, MotionTracker};
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -231,6 +234,54 @@ struct ControllerSpec {
     options: String,
 }
 
+impl ControllerSpec {
+    /// A `perceptual` controller not told its hand-over: under the real clock the bench
+    /// measures it and passes it on, so that its bands are `--band refresh`'s.
+    fn lacks_hand_over(&self) -> bool {
+        self.name == "perceptual"
+            && !parse_options(&self.options).is_ok_and(|o| o.iter().any(|(k, _)| k == "hand_over"))
+    }
+
+    /// Appends `key=value` to the options.
+    fn add_option(&mut self, option: &str) {
+        if !self.options.is_empty() {
+            self.options.push(' ');
+        }
+        self.options.push_str(option);
+    }
+
+    /// The run's name in reports (not for `fixed`, named by its quality): the controller and
+    /// its options; for `perceptual`, its `model` file by its stem and the measured
+    /// `hand_over` left out.
+    fn label(&self) -> String {
+        if self.name != "perceptual" {
+            return match self.options.is_empty() {
+                true => self.name.clone(),
+                false => format!("{} {}", self.name, self.options.replace(',', "+")),
+            };
+        }
+        let options: Vec<String> = parse_options(&self.options)
+            .unwrap_or_default()
+            .into_iter()
+            .filter(|(k, _)| k != "hand_over")
+            .map(|(k, v)| match k.as_str() {
+                "model" => {
+                    let stem = std::path::Path::new(&v)
+                        .file_stem()
+                        .map_or_else(|| v.clone(), |s| s.to_string_lossy().into_owned());
+                    format!("{k}={stem}")
+                }
+                _ => format!("{k}={v}"),
+            })
+            .collect();
+        if options.is_empty() {
+            self.name.clone()
+        } else {
+            format!("{} {}", self.name, options.join("+"))
+        }
+    }
+}
+
 /// Splits `--controllers`: commas separate controllers, except inside an option value
 /// (a piece that does not start with a controller name belongs to the one before).
 fn parse_controllers(text: &str) -> Result<Vec<ControllerSpec>> {
@@ -287,19 +338,20 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.simulate && args.temporal != TemporalChoice::Off {
         bail!("--temporal needs a renderer (not --simulate)");
     }
-    let specs = parse_controllers(&args.controllers)?;
-    let build = |band: Band| -> Result<(Setup, Vec<Box<dyn Controller>>)> {
-        let setup =
-            Setup::new(band, bounds, start).context("--fixed-depth is outside the R bounds")?;
-        let controllers = specs
-            .iter()
-            .map(|s| Ok(from_name(&s.name, setup, &s.options)?))
-            .collect::<Result<Vec<_>>>()?;
-        Ok((setup, controllers))
-    };
+    let mut specs = parse_controllers(&args.controllers)?;
+    let build =
+        |band: Band, specs: &[ControllerSpec]| -> Result<(Setup, Vec<Box<dyn Controller>>)> {
+            let setup =
+                Setup::new(band, bounds, start).context("--fixed-depth is outside the R bounds")?;
+            let controllers = specs
+                .iter()
+                .map(|s| Ok(from_name(&s.name, setup, &s.options)?))
+                .collect::<Result<Vec<_>>>()?;
+            Ok((setup, controllers))
+        };
     // Checks the controllers before anything renders (a band aligned with the display is
     // only known once the hand-over is measured).
-    build(Band::new(args.tmin, args.tmax)?)?;
+    build(Band::new(args.tmin, args.tmax)?, &specs)?;
     if let Some(dir) = &args.video {
         video::prepare(dir)?;
     }
@@ -316,19 +368,44 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         let info = renderer.info();
         let (w, h) = default_resolution(&info.backend, &info.device);
         let name = scene.name.clone();
+        let (width, height) = (args.width.unwrap_or(w), args.height.unwrap_or(h));
+        let motion = MotionProbe::new(&scene, (width, height), ViewingSetup::standard_fhd())?;
         let source = RendererSource {
             renderer,
             scene,
-            width: args.width.unwrap_or(w),
-            height: args.height.unwrap_or(h),
+            width,
+            height,
+            motion: MotionTracker::new(motion),
         };
         (Box::new(source), name)
     };
-    let (band, aligned) = match (&args.band, &real) {
-        (None, _) => (Band::new(args.tmin, args.tmax)?, None),
-        (Some(_), None) => bail!("--band refresh needs --clock real"),
-        (Some(choice), Some(options)) => {
-            let hand_over_ms = measure_hand_over(source.as_mut(), start, args.warmup.max(10))?;
+    // The hand-over, measured once when a display-aligned band or a controller choosing its
+    // frame time needs it.
+    let needs_hand_over = real.is_some()
+        && (args.band.is_some() || specs.iter().any(ControllerSpec::lacks_hand_over));
+    let hand_over_ms = if needs_hand_over {
+        Some(measure_hand_over(
+            source.as_mut(),
+            start,
+            args.warmup.max(5),
+        )?)
+    } else {
+        None
+    };
+    if let Some(ms) = hand_over_ms {
+        for spec in specs.iter_mut().filter(|s| s.lacks_hand_over()) {
+            eprintln!(
+                "bench: {}: hand-over {ms:.2} ms (median at the start quality)",
+                spec.name
+            );
+            spec.add_option(&format!("hand_over={ms:.3}"));
+        }
+    }
+    let (band, aligned) = match (&args.band, &real, hand_over_ms) {
+        (None, _, _) => (Band::new(args.tmin, args.tmax)?, None),
+        (Some(_), None, _) => bail!("--band refresh needs --clock real"),
+        (Some(_), Some(_), None) => bail!("the hand-over was not measured"),
+        (Some(choice), Some(options), Some(hand_over_ms)) => {
             let (tmin, tmax) = aligned_band(&options.display, choice.multiple, hand_over_ms)?;
             eprintln!(
                 "bench: --band {choice}: hand-over {hand_over_ms:.2} ms (median at the start quality), band [{tmin:.2}, {tmax:.2}] ms"
@@ -342,7 +419,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             )
         }
     };
-    let (setup, controllers) = build(band)?;
+    let (setup, controllers) = build(band, &specs)?;
     let mut controllers: Vec<_> = specs.iter().zip(controllers).collect();
     let real = match real {
         Some(options) => {
@@ -482,10 +559,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     // The best fixed quality runs once per temporal mode, after the first fixed one.
     let mut best_fixed_due = vec![!args.no_best_fixed; modes.len()];
     for (spec, controller) in &mut controllers {
-        let label = match (spec.name.as_str(), spec.options.is_empty()) {
-            ("fixed", _) => format!("fixed {}", quality_label(&controller.quality(), &bounds)),
-            (name, true) => name.to_string(),
-            (name, false) => format!("{name} {}", spec.options.replace(',', "+")),
+        let label = match spec.name.as_str() {
+            "fixed" => format!("fixed {}", quality_label(&controller.quality(), &bounds)),
+            _ => spec.label(),
         };
         for (&temporal, best_due) in modes.iter().zip(&mut best_fixed_due) {
             let suffix = if temporal { " +temporal" } else { "" };
@@ -662,6 +738,73 @@ mod tests {
         assert_eq!(names, ["fixed", "step", "predictive"]);
         assert_eq!(specs[1].options, "knob=both");
         assert_eq!(specs[2].options, "order=depth,spp");
+    }
+
+    #[test]
+    fn perceptual_runs_are_told_the_hand_over_and_named_by_their_model() {
+        let mut specs =
+            parse_controllers("predictive:order=depth,spp,perceptual:model=out/motion.json")
+                .unwrap();
+        assert!(!specs[0].lacks_hand_over());
+        assert!(specs[1].lacks_hand_over());
+        specs[1].add_option("hand_over=1.600");
+        assert!(!specs[1].lacks_hand_over());
+        assert_eq!(specs[1].options, "model=out/motion.json hand_over=1.600");
+        assert_eq!(specs[1].label(), "perceptual model=motion");
+        assert_eq!(specs[0].label(), "predictive order=depth+spp");
+    }
+
+    #[test]
+    fn perceptual_bands_are_the_display_aligned_bands() {
+        use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
+        use steadyray_control::{Bounds, Metric, MotionModel, Perceptual, PerceptualParams};
+        use steadyray_display::{DisplayConfig, SyncMode};
+        let display = DisplayConfig::new(60.0, SyncMode::Vsync).unwrap();
+        let frame_times: Vec<f64> = (1..=3)
+            .map(|m| f64::from(m) * display.period_ms())
+            .collect();
+        let point = LadderPoint {
+            spp: 1.0,
+            depth: 1,
+            scale: 1.0,
+            rays: 1.0,
+            ms: 1.0,
+            flip: 0.1,
+        };
+        let model = MotionModel {
+            metric: Metric::Jod,
+            scene: "test".into(),
+            resolution: [64, 36],
+            refresh_hz: 60.0,
+            stimulus_s: 0.5,
+            viewing: serde_json::Value::Null,
+            ladder: Ladder {
+                scene: "test".into(),
+                resolution: [64, 36],
+                reference: Reference {
+                    spp: 16.0,
+                    depth: 16,
+                    scale: 1.0,
+                },
+                views: 1,
+                points: vec![point],
+            },
+            speeds_deg_s: vec![0.0],
+            scores: vec![vec![vec![9.0]; 3]],
+            frame_times_ms: frame_times,
+        };
+        let bounds = Bounds::default();
+        let setup = Setup::new(Band::PAPER, bounds, bounds.min_quality()).unwrap();
+        let params = PerceptualParams {
+            model: Some(model),
+            hand_over_ms: 1.6,
+            ..PerceptualParams::default()
+        };
+        let c = Perceptual::new(setup, params).unwrap();
+        // It starts at the longest frame time: three refreshes.
+        let (tmin, tmax) = aligned_band(&display, 3, 1.6).unwrap();
+        assert!((c.band().tmin_ms() - tmin).abs() < 1e-9);
+        assert!((c.band().tmax_ms() - tmax).abs() < 1e-9);
     }
 
     #[test]

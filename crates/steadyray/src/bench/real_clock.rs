@@ -122,6 +122,7 @@ pub fn run_controller_real(
     let mut shown_ms = 0u64;
     while let Some(slot) = clock.next_frame() {
         let q = controller.quality();
+        let target_ms = controller.target_frame_ms();
         let at = PathPoint::Time {
             index: slot.index,
             t_s: slot.world_s(),
@@ -151,6 +152,7 @@ pub fn run_controller_real(
             pictures.insert(before.frame, picture);
         }
         rows.push(FrameRow {
+            target_ms,
             display: Some(times),
             ..FrameRow::measured(slot.index as u32, slot.world_s(), &m, sweep.band)
         });

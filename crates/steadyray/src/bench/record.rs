@@ -35,6 +35,11 @@ pub struct FrameRow {
     pub flip: Option<f64>,
     /// The frame's way to the screen (real clock only).
     pub display: Option<FrameTimes>,
+    /// Its motion on screen, degrees of visual angle per second: mean and 95th percentile.
+    pub speed_mean: f64,
+    pub speed_p95: f64,
+    /// The frame time the controller aimed this frame at, ms (`perceptual` only).
+    pub target_ms: Option<f64>,
 }
 
 impl FrameRow {
@@ -56,6 +61,9 @@ impl FrameRow {
             in_band: band.contains(m.report.tp_ms),
             flip: None,
             display: None,
+            speed_mean: m.speed.mean_deg_s,
+            speed_p95: m.speed.p95_deg_s,
+            target_ms: None,
         }
     }
 }
@@ -90,14 +98,15 @@ pub fn safe_name(name: &str) -> String {
 
 /// Writes `frames.csv`: one row per frame and controller. The display columns (`start_ms`,
 /// `hand_over_ms`, `visible_ms`: the frame's way to the screen, ms of display time) are empty
-/// under the frame clock.
+/// under the frame clock; `speed_mean` and `speed_p95` are the frame's motion on screen (deg/s),
+/// `target_ms` the frame time `perceptual` aimed it at (empty for other controllers).
 pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
     let mut out = std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
     );
     writeln!(
         out,
-        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms"
+        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms,speed_mean,speed_p95,target_ms"
     )?;
     for run in runs {
         for r in &run.rows {
@@ -112,7 +121,7 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
             );
             writeln!(
                 out,
-                "{},{},{:.6},{},{},{},{:.4},{:.4},{:.4},{},{},{},{:.6},{}",
+                "{},{},{:.6},{},{},{},{:.4},{:.4},{:.4},{},{},{},{:.6},{},{:.3},{:.3},{}",
                 run.name,
                 r.frame,
                 r.angle,
@@ -127,6 +136,9 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
                 r.flip.map_or_else(String::new, |f| format!("{f:.6}")),
                 r.t_s,
                 display,
+                r.speed_mean,
+                r.speed_p95,
+                r.target_ms.map_or_else(String::new, |t| format!("{t:.4}")),
             )?;
         }
     }

@@ -82,6 +82,37 @@ struct ControllerEntry<'a> {
     /// The screen against the world at each sampled refresh (real clock, `--quality`).
     #[serde(flatten)]
     displayed: Option<DisplayedEntry>,
+    /// The motion on screen and the frame times a controller chose.
+    #[serde(flatten)]
+    motion: MotionEntry,
+}
+
+/// The motion on screen over a run, and the targets of a controller that chooses its frame
+/// time (`perceptual`).
+#[derive(Serialize)]
+struct MotionEntry {
+    /// Mean over the frames of their mean motion on screen, deg/s.
+    speed_mean_deg_s: f64,
+    /// Mean target frame time over the frames, ms.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    target_ms_mean: Option<f64>,
+    /// How often the target changed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    target_changes: Option<usize>,
+}
+
+impl MotionEntry {
+    fn of(run: &ControllerRun) -> Self {
+        let rows = &run.rows;
+        let n = rows.len().max(1) as f64;
+        let targets: Vec<f64> = rows.iter().filter_map(|r| r.target_ms).collect();
+        let targeted = !targets.is_empty();
+        Self {
+            speed_mean_deg_s: rows.iter().map(|r| r.speed_mean).sum::<f64>() / n,
+            target_ms_mean: targeted.then(|| targets.iter().sum::<f64>() / targets.len() as f64),
+            target_changes: targeted.then(|| targets.windows(2).filter(|w| w[0] != w[1]).count()),
+        }
+    }
 }
 
 /// The displayed quality's figures in `summary.json`.
@@ -143,6 +174,7 @@ pub fn write_summary(
                         screen_age_ms_mean: q.age_ms_mean,
                         displayed_samples: q.samples,
                     }),
+                motion: MotionEntry::of(r),
             })
             .collect(),
     };

@@ -6,6 +6,7 @@ use std::f64::consts::TAU;
 use std::time::Instant;
 use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
+use steadyray_motion::{MotionTracker, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
 use steadyray_render::{Image, RenderSettings, Renderer, TemporalSettings};
 use steadyray_scene::Scene;
@@ -20,6 +21,9 @@ pub struct Measured {
     pub accel_ms: f64,
     /// Camera yaw of the frame, radians.
     pub angle: f32,
+    /// The frame's motion on screen since the frame rendered before it (0 from a source
+    /// that does not measure it: the simulated renderer).
+    pub speed: ScreenSpeed,
 }
 
 /// A frame handed to the display: its cost and, from a renderer, the picture.
@@ -80,6 +84,9 @@ pub struct RendererSource {
     pub scene: Scene,
     pub width: u32,
     pub height: u32,
+    /// Measures each frame's motion on screen since the frame rendered before it (outside
+    /// the render's time).
+    pub motion: MotionTracker,
 }
 
 impl FrameSource for RendererSource {
@@ -111,6 +118,7 @@ impl FrameSource for RendererSource {
             max_depth: q.depth,
         };
         let stats = self.renderer.render(&camera, time_s, &settings)?;
+        let speed = self.motion.next(Shot { camera, time_s })?;
         let f = camera.forward;
         Ok(Measured {
             report: FrameReport {
@@ -119,11 +127,12 @@ impl FrameSource for RendererSource {
                 shadow_rays: stats.rays.shadow,
                 pixels: settings.pixels(),
                 quality: q,
-                speed_deg_s: 0.0,
+                speed_deg_s: speed.mean_deg_s,
             },
             wall_ms: stats.wall_ms,
             accel_ms: stats.accel_ms,
             angle: (-f.x).atan2(-f.z).rem_euclid(std::f32::consts::TAU),
+            speed,
         })
     }
 
@@ -201,6 +210,7 @@ impl FrameSource for SimulatedSource {
             accel_ms: 0.0,
             report,
             angle: (TAU * turn) as f32,
+            speed: ScreenSpeed::default(),
         })
     }
 

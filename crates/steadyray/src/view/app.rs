@@ -22,7 +22,7 @@ use std::sync::Arc;
 use std::time::Instant;
 use steadyray_control::{Band, FrameReport};
 use steadyray_display::ViewingSetup;
-use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
+use steadyray_motion::{MotionProbe, MotionTracker, Shot};
 use steadyray_render::{FrameStats, RenderSettings, TemporalSettings, TimingSource};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{GpuOptions, GpuRenderer, surface_adapter};
@@ -125,10 +125,9 @@ struct Live {
     scene_time_s: f64,
     /// The scene path's duration, s.
     scene_duration_s: f64,
-    /// Measures each frame's motion on screen for the controller and the HUD.
-    motion: MotionProbe,
-    /// The camera of the last frame and when it was rendered (window time, s).
-    last_shot: Option<Shot>,
+    /// Measures each frame's motion on screen (since the last frame, in window time) for
+    /// the controller and the HUD.
+    motion: MotionTracker,
     /// A keyed camera path and the scene camera it starts from: while the sweep is on, the
     /// camera follows it at the scene time instead of turning.
     keyed_path: Option<(CameraPath, Camera)>,
@@ -385,8 +384,7 @@ impl Running {
                 let live = Live {
                     renderer,
                     control,
-                    motion,
-                    last_shot: None,
+                    motion: MotionTracker::new(motion),
                     camera: FlyCamera::from_camera(&scene.camera),
                     sweep: Sweep {
                         on: plan.sweep,
@@ -663,14 +661,10 @@ impl Running {
                     render_ms
                 };
                 // The motion on screen since the last frame (outside the render's time).
-                let shot = Shot {
+                let motion = live.motion.next(Shot {
                     camera,
                     time_s: t_s,
-                };
-                let motion = match live.last_shot.replace(shot) {
-                    Some(before) => live.motion.measure(&before, &shot)?,
-                    None => ScreenSpeed::default(),
-                };
+                })?;
                 let report = FrameReport {
                     tp_ms: render_ms,
                     rays_per_depth: stats.rays.per_depth.clone(),
