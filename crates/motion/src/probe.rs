@@ -173,7 +173,7 @@ mod tests {
                 .unwrap()
                 .mean_deg_s
         };
-        let (hold, slow, fast) = (at(1.0), at(3.0), at(4.75));
+        let (hold, slow, fast) = (at(1.0), at(2.5), at(3.25));
         assert!(hold < 1e-3, "{hold}");
         assert!(slow > 4.0 && slow < 9.0, "{slow}");
         assert!(fast > 70.0 && fast < 120.0, "{fast}");

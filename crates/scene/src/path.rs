@@ -55,24 +55,23 @@ const fn stretch(seconds: f64, deg_per_s: f64) -> Stretch {
 }
 
 /// The `pans` path's stretches, in order: a hold down the mirrors, a slow pan, a fast turn, a
-/// hold, a slow pan, a fast turn, a hold and a medium pan back to the start: 360° in 12 s.
-/// With the corridor's 60° vertical field of view at 16:9 on the standard viewing set-up (a
-/// 24-inch display at 0.6 m), the picture moves at 0.54° of visual angle per degree of yaw on
-/// average (0.43° at its centre, more toward its edges): 0, 6.5, 97, 0, 8, 81, 0 and 32 °/s
-/// on average over the picture.
-pub const PANS: [Stretch; 8] = [
-    stretch(2.0, 0.0),
-    stretch(2.5, 12.0),
+/// hold, a slow pan, a fast turn and a medium turn back to the start: 360° in 8 s. With the
+/// corridor's 60° vertical field of view at 16:9 on the standard viewing set-up (a 24-inch
+/// display at 0.6 m), the picture moves at 0.54° of visual angle per degree of yaw on average
+/// (0.43° at its centre, more toward its edges): 0, 6.5, 97, 0, 8, 81 and 47 °/s on average
+/// over the picture.
+pub const PANS: [Stretch; 7] = [
+    stretch(1.5, 0.0),
+    stretch(1.5, 12.0),
     stretch(0.5, 180.0),
-    stretch(2.0, 0.0),
-    stretch(2.0, 15.0),
+    stretch(1.5, 0.0),
+    stretch(1.0, 15.0),
     stretch(1.0, 150.0),
-    stretch(1.0, 0.0),
-    stretch(1.0, 60.0),
+    stretch(1.0, 87.0),
 ];
 
 /// The length of the `pans` path's stretches, s: its default duration.
-pub const PANS_DURATION_S: f64 = 12.0;
+pub const PANS_DURATION_S: f64 = 8.0;
 
 /// The `pans` path's yaw at `t_s` seconds into its stretches, degrees (the path repeats
 /// after [`PANS_DURATION_S`]).
@@ -340,14 +339,11 @@ mod tests {
         assert_eq!(total, PANS_DURATION_S);
         assert!((pans_yaw_deg(PANS_DURATION_S - 1e-9) - 360.0).abs() < 1e-6);
         assert_eq!(pans_yaw_deg(0.0), 0.0);
-        assert_eq!(pans_yaw_deg(1.5), 0.0, "the first hold");
-        assert!((pans_yaw_deg(3.0) - 12.0).abs() < 1e-9, "a slow pan");
+        assert_eq!(pans_yaw_deg(1.0), 0.0, "the first hold");
+        assert!((pans_yaw_deg(2.25) - 9.0).abs() < 1e-9, "a slow pan");
+        assert!((pans_yaw_deg(3.25) - 63.0).abs() < 1e-9, "a fast turn");
         assert!(
-            (pans_yaw_deg(4.75) - (30.0 + 45.0)).abs() < 1e-9,
-            "a fast turn"
-        );
-        assert!(
-            (pans_yaw_deg(PANS_DURATION_S + 3.0) - 12.0).abs() < 1e-9,
+            (pans_yaw_deg(PANS_DURATION_S + 2.25) - 9.0).abs() < 1e-9,
             "repeats"
         );
         let path = CameraPath::pans(720);
@@ -356,7 +352,7 @@ mod tests {
         // Frame k of n and the time of that frame agree.
         let (by_frame, by_time) = (
             path.camera(&base, 180, 720),
-            path.camera_at_time(&base, 3.0),
+            path.camera_at_time(&base, 2.0),
         );
         assert!((by_frame.forward - by_time.forward).length() < 1e-6);
         assert!(

@@ -99,7 +99,7 @@ fn pans_path() {
     let text = format!("{MINIMAL}[path]\ntype = \"pans\"\nframes = 360\n");
     let s = parse_scene(&text, "p.toml", None).unwrap();
     assert_eq!(s.path, CameraPath::pans(360));
-    assert_eq!(s.path.duration_s(), 12.0);
+    assert_eq!(s.path.duration_s(), 8.0);
     let again = parse_scene(&scene_to_toml(&s), "again.toml", None).unwrap();
     assert_eq!(again.path, s.path);
     let extra = format!("{MINIMAL}[path]\ntype = \"pans\"\nradius = 3\n");

@@ -105,8 +105,8 @@ pub struct SceneArgs {
 pub enum PathChoice {
     /// The paper's sweep: one full turn of the yaw at constant speed.
     Sweep,
-    /// Holds, slow pans and fast turns (one full turn in 12 s): motion on screen from 0 to
-    /// about 80 degrees of visual angle per second (docs/scene-format.md).
+    /// Holds, slow pans and fast turns (one full turn in 8 s): motion on screen from 0 to
+    /// about 100 degrees of visual angle per second (docs/scene-format.md).
     Pans,
 }
 
