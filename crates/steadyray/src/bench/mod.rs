@@ -13,17 +13,17 @@
 //! measures the screen against the world at sampled refreshes ([`displayed`]) and `--video
 //! DIR` writes the screen and the reference at every refresh ([`video`]).
 
-mod displayed;
+pub(crate) mod displayed;
 mod experiment;
-mod machine;
+pub(crate) mod machine;
 mod playback;
 pub mod plot;
 pub mod quality;
-mod real_clock;
+pub(crate) mod real_clock;
 mod record;
 pub mod report;
-mod source;
-mod video;
+pub(crate) mod source;
+pub(crate) mod video;
 
 use crate::backend::create_renderer;
 use crate::cli::{BoundsArgs, ClockChoice, DisplayArgs, SceneArgs, TemporalChoice};

@@ -1,16 +1,20 @@
 //! `steadyray calibrate`: measures (S, R, scale) settings over sampled views of the camera
 //! path (rays, time, FLIP against a high-quality reference) and writes their Pareto front as
 //! a ladder (`ladder.json`, format in `steadyray_control::ladder`) for `predictive`'s
-//! `ladder=FILE` option.
+//! `ladder=FILE` option. With `--motion` it measures the quality model of `perceptual`
+//! instead ([`crate::commands::calibrate_motion`]).
 
 use crate::backend::create_renderer;
 use crate::bench::quality::shown;
 use crate::cli::SceneArgs;
+use crate::commands::calibrate_motion::{JodTool, MotionPlan, calibrate_motion, stimulus_count};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use std::path::Path;
 use std::path::PathBuf;
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
+use steadyray_control::{MotionModel, Quality};
 use steadyray_quality::{Rgb8Image, flip};
 use steadyray_render::{RenderSettings, Renderer, TemporalSettings};
 use steadyray_scene::Scene;
@@ -19,9 +23,9 @@ use steadyray_scene::Scene;
 pub struct CalibrateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Views of the camera path to measure, evenly spaced.
-    #[arg(long, default_value_t = 8)]
-    pub views: u32,
+    /// Views of the camera path to measure, evenly spaced (default 8; with --motion, 2).
+    #[arg(long)]
+    pub views: Option<u32>,
     /// Frames in the camera path the views are taken from (as `bench --frames`).
     #[arg(long, default_value_t = 720)]
     pub frames: u32,
@@ -49,18 +53,72 @@ pub struct CalibrateArgs {
     pub scales: Vec<f32>,
     /// The reference's eye rays per pixel S (full scale). The reference setting itself is
     /// also a point of the ladder (FLIP 0), so the ladder reaches the highest quality.
-    #[arg(long, default_value_t = 256.0)]
-    pub reference_spp: f32,
+    /// Default 256; with --motion, where a reference is rendered per refresh, 16 (as the
+    /// real clock's bench).
+    #[arg(long)]
+    pub reference_spp: Option<f32>,
     /// The reference's reflection depth R.
     #[arg(long, default_value_t = 16)]
     pub reference_depth: u32,
-    /// Where to write the ladder.
-    #[arg(short = 'o', long = "out", default_value = "ladder.json")]
-    pub out: PathBuf,
+    /// Where to write the ladder (default ladder.json; with --motion, motion.json).
+    #[arg(short = 'o', long = "out")]
+    pub out: Option<PathBuf>,
+    /// Measure the quality model of the `perceptual` controller instead of a ladder: short
+    /// stimuli over a grid of screen speeds, frame times and points of --ladder, scored by
+    /// displayed FLIP (and by JOD with --jod); written as motion.json.
+    #[arg(long)]
+    pub motion: bool,
+    /// With --motion: the calibrated ladder whose points are scored.
+    #[arg(long, requires = "motion", value_name = "FILE")]
+    pub ladder: Option<PathBuf>,
+    /// With --motion: how many of the ladder's points to score, spread evenly by cost
+    /// (0: all).
+    #[arg(long, requires = "motion", default_value_t = 5)]
+    pub points: usize,
+    /// With --motion: screen speeds, degrees of visual angle per second, comma separated.
+    #[arg(
+        long,
+        requires = "motion",
+        value_delimiter = ',',
+        default_value = "0,8,32,96"
+    )]
+    pub speeds: Vec<f64>,
+    /// With --motion: frame times, in refreshes of the display, comma separated.
+    #[arg(
+        long,
+        requires = "motion",
+        value_delimiter = ',',
+        default_value = "1,2,3"
+    )]
+    pub refreshes: Vec<u32>,
+    /// With --motion: the display's refresh rate, Hz.
+    #[arg(long, requires = "motion", default_value_t = 60.0)]
+    pub refresh: f64,
+    /// With --motion: each stimulus's length, seconds.
+    #[arg(long, requires = "motion", default_value_t = 0.5)]
+    pub stimulus: f64,
+    /// With --motion: write each stimulus's screen and reference videos into DIR (one
+    /// folder per view and speed, in the layout of `bench --video`).
+    #[arg(long, requires = "motion", value_name = "DIR")]
+    pub video: Option<PathBuf>,
+    /// With --video: score the videos with the JOD tool (ColorVideoVDP, scripts/jod/jod.py)
+    /// and fill the table with JOD; the displayed-FLIP table is written beside it
+    /// (`<out>-flip.json`). A folder already scored (its jod.json) is not scored again.
+    #[arg(long, requires = "video")]
+    pub jod: bool,
+    /// With --jod: the Python that runs the JOD tool (with scripts/jod/requirements.txt).
+    #[arg(long, requires = "jod", default_value = "python3")]
+    pub python: String,
+    /// With --jod: the JOD tool.
+    #[arg(long, requires = "jod", default_value = "scripts/jod/jod.py")]
+    pub jod_script: PathBuf,
+    /// With --jod: keep every video once scored (else only video.json and jod.json stay).
+    #[arg(long, requires = "jod")]
+    pub keep_video: bool,
     /// Calibrate for the temporal mode (docs/temporal.md): each setting renders FRAMES frames
     /// leading up to each view (1/--rate s apart on the path) into a history and is measured
     /// on it, so the ladder ranks the settings by what they look like with history.
-    #[arg(long, value_name = "FRAMES")]
+    #[arg(long, value_name = "FRAMES", conflicts_with = "motion")]
     pub temporal: Option<u32>,
     /// With --temporal: frames per second of the frames leading up to each view.
     #[arg(long, default_value_t = 60.0, requires = "temporal")]
@@ -227,21 +285,26 @@ pub fn calibrate(
     Ok(ladder)
 }
 
-/// Runs the calibration, prints the front and writes the ladder.
+/// Runs the calibration, prints the front and writes the ladder (or, with `--motion`, the
+/// quality model).
 pub fn run(args: &CalibrateArgs) -> Result<()> {
     let scene = args.scene.load()?;
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
+    if args.motion {
+        return run_motion(args, renderer.as_mut(), &scene);
+    }
+    let out = args.out.clone().unwrap_or_else(|| "ladder.json".into());
     let plan = Plan {
         width: args.width,
         height: args.height,
         frames: args.frames,
-        views: args.views,
+        views: args.views.unwrap_or(8),
         spp: args.spp.clone(),
         depths: args.depths.clone(),
         scales: args.scales.clone(),
         reference: Reference {
-            spp: args.reference_spp,
+            spp: args.reference_spp.unwrap_or(256.0),
             depth: args.reference_depth,
             scale: 1.0,
         },
@@ -264,16 +327,106 @@ pub fn run(args: &CalibrateArgs) -> Result<()> {
             p.spp, p.depth, p.scale, p.rays, p.ms, p.flip
         );
     }
-    let text = serde_json::to_string_pretty(&ladder)?;
-    std::fs::write(&args.out, text + "\n")
-        .with_context(|| format!("cannot write {}", args.out.display()))?;
+    write_json(&ladder, &out)?;
     eprintln!(
         "calibrate: {} of {} settings on the front; wrote {}",
         ladder.points.len(),
         plan.settings().len() + 1,
-        args.out.display()
+        out.display()
     );
     Ok(())
+}
+
+/// Writes `value` as pretty JSON under a temporary name, then renames it over `path`.
+fn write_json(value: &impl serde::Serialize, path: &Path) -> Result<()> {
+    crate::bench::report::write_json(&serde_json::to_value(value)?, path)
+}
+
+/// `calibrate --motion`: measures, prints and writes the quality model.
+fn run_motion(args: &CalibrateArgs, renderer: &mut dyn Renderer, scene: &Scene) -> Result<()> {
+    let ladder_path = args
+        .ladder
+        .as_ref()
+        .context("--motion scores the points of a calibrated ladder: give --ladder FILE")?;
+    let ladder = Ladder::load(ladder_path).map_err(anyhow::Error::msg)?;
+    let out = args.out.clone().unwrap_or_else(|| "motion.json".into());
+    if let Some(dir) = &args.video {
+        crate::bench::video::prepare(dir)?;
+    }
+    let plan = MotionPlan {
+        width: args.width,
+        height: args.height,
+        ladder,
+        points: args.points,
+        speeds: args.speeds.clone(),
+        refreshes: args.refreshes.clone(),
+        refresh_hz: args.refresh,
+        stimulus_s: args.stimulus,
+        views: args.views.unwrap_or(2),
+        reference: Quality::new(
+            args.reference_spp.unwrap_or(16.0),
+            args.reference_depth,
+            1.0,
+        ),
+        video: args.video.clone(),
+        jod: args.jod.then(|| JodTool {
+            python: args.python.clone(),
+            script: args.jod_script.clone(),
+            keep_video: args.keep_video,
+        }),
+    };
+    let progress = ProgressBar::new(stimulus_count(&plan));
+    progress.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} stimuli, {msg} [{elapsed}]")
+            .expect("the progress template is valid"),
+    );
+    let tables = calibrate_motion(renderer, scene, &plan, &progress)?;
+    progress.finish_and_clear();
+    print!("{}", motion_table(&tables.model));
+    if let Some(flip) = &tables.flip {
+        let stem = out.file_stem().map_or_else(
+            || "motion".to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        );
+        let flip_path = out.with_file_name(format!("{stem}-flip.json"));
+        write_json(flip, &flip_path)?;
+        eprintln!(
+            "calibrate: the displayed-FLIP table in {}",
+            flip_path.display()
+        );
+    }
+    write_json(&tables.model, &out)?;
+    eprintln!(
+        "calibrate: a {} table of {} speeds x {} frame times x {} ladder points; wrote {}",
+        tables.model.metric,
+        tables.model.speeds_deg_s.len(),
+        tables.model.frame_times_ms.len(),
+        tables.model.ladder.points.len(),
+        out.display()
+    );
+    Ok(())
+}
+
+/// The model as a text table: a row per speed and frame time, a column per ladder point.
+fn motion_table(model: &MotionModel) -> String {
+    let mut out = format!("{:>8} {:>9}", "deg/s", "frame ms");
+    for p in &model.ladder.points {
+        out.push_str(&format!(
+            " {:>16}",
+            format!("S={} R={} x{}", p.spp, p.depth, p.scale)
+        ));
+    }
+    out.push('\n');
+    for (i, speed) in model.speeds_deg_s.iter().enumerate() {
+        for (j, ms) in model.frame_times_ms.iter().enumerate() {
+            out.push_str(&format!("{speed:>8} {ms:>9.2}"));
+            for score in &model.scores[i][j] {
+                out.push_str(&format!(" {score:>16.4}"));
+            }
+            out.push('\n');
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! One module per subcommand (`bench` has a folder of its own: `crate::bench`).
 
 pub mod calibrate;
+pub mod calibrate_motion;
 pub mod compare;
 pub mod jod;
 pub mod ray_dump;

@@ -1,0 +1,672 @@
+//! `steadyray calibrate --motion`: the quality model of the `perceptual` controller
+//! (`motion.json`, format in `steadyray_control::motion_model`): how good the displayed video
+//! looks over a grid of screen speeds, frame times (whole numbers of refreshes) and points of
+//! a calibrated ladder.
+//!
+//! Each cell is a short stimulus: the camera turns in place at the yaw rate that moves the
+//! picture at the cell's speed (mean over the picture, as `crates/motion` measures it),
+//! centred on a view of the scene's path, the world frozen at that view's time. Frames are
+//! rendered at the cell's ladder point and shown on the display model exactly every
+//! `refreshes` refreshes, each rendering the world at its display time (as the real clock
+//! does for a frame that keeps its band); the reference is the world at every refresh at the
+//! reference quality. A cell's score is the displayed video against the reference video:
+//! mean displayed FLIP (the bench's, under the same viewing set-up) always; with `--jod`,
+//! ColorVideoVDP's JOD by the project's JOD tool (`scripts/jod/jod.py`), which the table then
+//! holds. A still picture looks the same at every frame time, so speed 0 is rendered once
+//! per point and shared. Scores are averaged over the views.
+
+use crate::bench::displayed::{TimedReferences, measure, screen_samples};
+use crate::bench::machine::git_revision;
+use crate::bench::real_clock::DisplayRun;
+use crate::bench::source::{FrameSource, HandOver, Measured, PathPoint, scaled_size};
+use crate::bench::video::{self, ReferenceKey, VideoIndex, VideoRun};
+use anyhow::{Context, Result, bail};
+use indicatif::ProgressBar;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+use steadyray_control::ladder::Ladder;
+use steadyray_control::{FrameReport, Metric, MotionModel, Quality};
+use steadyray_display::model::refresh_at_or_after;
+use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, ViewingSetup};
+use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
+use steadyray_quality::Rgb8Image;
+use steadyray_render::{Image, RenderSettings, Renderer};
+use steadyray_scene::{Camera, Scene};
+
+/// What to measure.
+#[derive(Clone, Debug)]
+pub struct MotionPlan {
+    pub width: u32,
+    pub height: u32,
+    /// The ladder the points come from.
+    pub ladder: Ladder,
+    /// How many of its points to score (0: all).
+    pub points: usize,
+    /// Screen speeds, deg/s, strictly rising.
+    pub speeds: Vec<f64>,
+    /// Frame times in refreshes, strictly rising.
+    pub refreshes: Vec<u32>,
+    pub refresh_hz: f64,
+    /// Each stimulus's length, s.
+    pub stimulus_s: f64,
+    /// Views of the path the stimuli turn around, evenly spaced in time.
+    pub views: u32,
+    pub reference: Quality,
+    /// Where to write the stimuli's videos, for the JOD tool.
+    pub video: Option<PathBuf>,
+    /// How to run the JOD tool on them (the table then holds JOD).
+    pub jod: Option<JodTool>,
+}
+
+impl MotionPlan {
+    /// The ladder points scored are those calibrated at no more than twice the longest
+    /// frame time, ms.
+    fn max_point_ms(&self) -> f64 {
+        let longest = self.refreshes.iter().copied().max().unwrap_or(1);
+        2.0 * f64::from(longest) * 1000.0 / self.refresh_hz
+    }
+}
+
+/// The JOD tool and what to keep of the videos it scored.
+#[derive(Clone, Debug)]
+pub struct JodTool {
+    pub python: String,
+    pub script: PathBuf,
+    /// Keep every video (else only `video.json` and `jod.json` stay once scored).
+    pub keep_video: bool,
+}
+
+/// `count` points of the ladder, spread evenly by the logarithm of their rays, the cheapest
+/// and the dearest included (all of them when `count` is 0 or at least their number), among
+/// the points its calibration timed at `max_ms` or less (the cheapest always): a point that
+/// takes far longer than the longest frame time can never be chosen.
+pub fn pick_points(ladder: &Ladder, count: usize, max_ms: f64) -> Ladder {
+    let affordable: Vec<_> = ladder
+        .points
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| *i == 0 || p.ms <= max_ms)
+        .map(|(_, p)| *p)
+        .collect();
+    let ladder = Ladder {
+        points: affordable,
+        ..ladder.clone()
+    };
+    let n = ladder.points.len();
+    if count == 0 || count >= n {
+        return ladder;
+    }
+    let log = |i: usize| ladder.points[i].rays.max(1.0).ln();
+    let (lo, hi) = (log(0), log(n - 1));
+    let mut chosen: Vec<usize> = Vec::new();
+    for j in 0..count {
+        let want = lo + (hi - lo) * j as f64 / (count - 1).max(1) as f64;
+        let best = (0..n)
+            .filter(|i| !chosen.contains(i))
+            .min_by(|&a, &b| (log(a) - want).abs().total_cmp(&(log(b) - want).abs()))
+            .expect("fewer points chosen than the ladder holds");
+        chosen.push(best);
+    }
+    chosen.sort_unstable();
+    Ladder {
+        points: chosen.iter().map(|&i| ladder.points[i]).collect(),
+        ..ladder.clone()
+    }
+}
+
+/// A camera turning in place at a constant yaw rate, centred (at `centre_s`) on a view.
+#[derive(Clone, Copy, Debug)]
+struct Turn {
+    base: Camera,
+    yaw: f32,
+    pitch: f32,
+    rad_per_s: f64,
+    centre_s: f64,
+}
+
+impl Turn {
+    /// A turn at `rad_per_s` through `view` at stimulus time `centre_s`.
+    fn new(view: Camera, rad_per_s: f64, centre_s: f64) -> Self {
+        let f = view.forward.normalize();
+        Self {
+            base: view,
+            yaw: (-f.x).atan2(-f.z),
+            pitch: f.y.clamp(-1.0, 1.0).asin(),
+            rad_per_s,
+            centre_s,
+        }
+    }
+
+    fn camera(&self, t_s: f64) -> Camera {
+        let yaw = self.yaw + (self.rad_per_s * (t_s - self.centre_s)) as f32;
+        Camera::yaw_pitch(self.base.eye, yaw, self.pitch, self.base.vfov_deg)
+    }
+}
+
+/// The yaw rate that moves the picture of `view` at `speed` deg/s on average: the turn is a
+/// rotation about the eye, so the speed is proportional to the rate (measured at 10°/s).
+fn rate_for_speed(probe: &MotionProbe, view: Camera, speed: f64) -> Result<f64> {
+    if speed == 0.0 {
+        return Ok(0.0);
+    }
+    let unit = 10f64.to_radians();
+    let turn = Turn::new(view, unit, 0.0);
+    let dt = 1.0 / 240.0;
+    let at = |t: f64| Shot {
+        camera: turn.camera(t),
+        time_s: t,
+    };
+    let measured: ScreenSpeed = probe.measure(&at(0.0), &at(dt))?;
+    if measured.mean_deg_s <= 0.0 {
+        bail!("a turn of this view moves nothing on screen: cannot set a speed");
+    }
+    Ok(unit * speed / measured.mean_deg_s)
+}
+
+/// Frames of one stimulus: the renderer, turning camera and frozen world of a view.
+struct StimulusSource<'a> {
+    renderer: &'a mut dyn Renderer,
+    turn: Turn,
+    world_s: f64,
+    width: u32,
+    height: u32,
+    duration_s: f64,
+}
+
+impl FrameSource for StimulusSource<'_> {
+    fn describe(&self) -> (String, String) {
+        let info = self.renderer.info();
+        (info.backend, info.device)
+    }
+
+    fn resolution(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    fn path_duration_s(&self) -> f64 {
+        self.duration_s
+    }
+
+    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+        let t_s = match at {
+            PathPoint::Time { t_s, .. } => t_s,
+            PathPoint::Frame { k, n } => self.duration_s * f64::from(k) / f64::from(n.max(1)),
+        };
+        let camera = self.turn.camera(t_s);
+        let (width, height) = scaled_size(self.width, self.height, q.scale);
+        let settings = RenderSettings {
+            width,
+            height,
+            spp: q.spp,
+            max_depth: q.depth,
+        };
+        let stats = self.renderer.render(&camera, self.world_s, &settings)?;
+        Ok(Measured {
+            report: FrameReport {
+                tp_ms: stats.render_ms,
+                rays_per_depth: stats.rays.per_depth,
+                shadow_rays: stats.rays.shadow,
+                pixels: settings.pixels(),
+                quality: q,
+                speed_deg_s: 0.0,
+            },
+            wall_ms: stats.wall_ms,
+            angle: 0.0,
+            speed: ScreenSpeed::default(),
+        })
+    }
+
+    fn hand_over(&mut self) -> Result<HandOver> {
+        let image = self.renderer.read_image()?;
+        Ok(HandOver {
+            ms: 0.0,
+            image: Some(Rgb8Image::from_rgba(
+                image.width,
+                image.height,
+                &image.to_srgb8_rgba(),
+            )?),
+        })
+    }
+
+    fn load_changes(&self, _n: u32) -> Option<Vec<usize>> {
+        None
+    }
+
+    fn last_image(&mut self) -> Result<Option<Image>> {
+        Ok(Some(self.renderer.read_image()?))
+    }
+}
+
+/// The screen of a stimulus at ladder point `q`, each frame shown for exactly `refreshes`
+/// refreshes: before the first frame, one rendered at time 0 (the bench's warm-up frame).
+fn stimulus_run(
+    source: &mut StimulusSource<'_>,
+    display: DisplayConfig,
+    refreshes: u32,
+    q: Quality,
+) -> Result<DisplayRun> {
+    // Done a tenth of a millisecond before its refresh: shown exactly on it.
+    let busy_ms = f64::from(refreshes) * display.period_ms() - 0.1;
+    let mut clock = RealClock::new(display, source.duration_s)?;
+    clock.expect(busy_ms);
+    let mut pictures = BTreeMap::new();
+    source.frame(PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
+    pictures.insert(None, picture(source)?);
+    let mut world_s = Vec::new();
+    while let Some(slot) = clock.next_frame() {
+        let at = PathPoint::Time {
+            index: slot.index,
+            t_s: slot.world_s(),
+        };
+        source.frame(at, q)?;
+        pictures.insert(Some(slot.index), picture(source)?);
+        world_s.push(slot.world_s());
+        clock.present(busy_ms, 0.0)?;
+    }
+    let timeline = clock.finish();
+    Ok(DisplayRun {
+        figures: DisplayFigures::of(&timeline),
+        timeline,
+        pictures,
+        world_s,
+        quality: None,
+    })
+}
+
+/// The last frame's tone-mapped picture at its rendered size.
+fn picture(source: &mut StimulusSource<'_>) -> Result<Rgb8Image> {
+    source
+        .hand_over()?
+        .image
+        .context("the stimulus renderer gave no picture")
+}
+
+/// A run's name in a stimulus folder: its frame time and ladder point.
+fn run_name(refreshes: u32, point: usize) -> String {
+    format!("r{refreshes}-p{point}")
+}
+
+/// Scores of one (view, speed) stimulus folder: by (refreshes, point).
+type Cells = BTreeMap<(u32, usize), f64>;
+
+/// Runs the JOD tool on a finished stimulus folder and reads its scores (reusing a
+/// `jod.json` that already holds every run).
+fn score_with_jod(tool: &JodTool, folder: &Path, runs: &[String]) -> Result<BTreeMap<String, f64>> {
+    let read = || -> Option<BTreeMap<String, f64>> {
+        let text = std::fs::read_to_string(folder.join("jod.json")).ok()?;
+        let value: serde_json::Value = serde_json::from_str(&text).ok()?;
+        let scores: BTreeMap<String, f64> = serde_json::from_value(value["jod"].clone()).ok()?;
+        runs.iter()
+            .all(|r| scores.contains_key(r))
+            .then_some(scores)
+    };
+    if let Some(scores) = read() {
+        return Ok(scores);
+    }
+    let status = Command::new(&tool.python)
+        .arg(&tool.script)
+        .arg(folder)
+        .status()
+        .with_context(|| {
+            format!(
+                "cannot run the JOD tool: {} {}",
+                tool.python,
+                tool.script.display()
+            )
+        })?;
+    if !status.success() {
+        bail!("the JOD tool failed ({status}) on {}", folder.display());
+    }
+    read().with_context(|| format!("{}/jod.json lacks some runs", folder.display()))
+}
+
+/// Removes a scored folder's pictures and videos, keeping `video.json` and `jod.json`.
+fn prune_video(folder: &Path) -> Result<()> {
+    for entry in std::fs::read_dir(folder)? {
+        let path = entry?.path();
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if name == "video.json" || name == "jod.json" {
+            continue;
+        }
+        if path.is_dir() {
+            std::fs::remove_dir_all(&path)
+        } else {
+            std::fs::remove_file(&path)
+        }
+        .with_context(|| format!("cannot remove {}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// The measured model: JOD when the JOD tool ran, else displayed FLIP; with JOD, the FLIP
+/// table is returned beside it.
+pub struct MotionTables {
+    pub model: MotionModel,
+    pub flip: Option<MotionModel>,
+}
+
+/// Measures the model of `plan` on `scene` (its path gives the views).
+pub fn calibrate_motion(
+    renderer: &mut dyn Renderer,
+    scene: &Scene,
+    plan: &MotionPlan,
+    progress: &ProgressBar,
+) -> Result<MotionTables> {
+    check_plan(plan)?;
+    let ladder = pick_points(&plan.ladder, plan.points, plan.max_point_ms());
+    let display = DisplayConfig::new(plan.refresh_hz, SyncMode::Vsync)?;
+    let viewing = ViewingSetup::standard_fhd();
+    let size = (plan.width, plan.height);
+    let ppd = viewing.pixels_per_degree(plan.width) as f32;
+    let probe = MotionProbe::new(scene, size, viewing.clone())?;
+    let period_ms = display.period_ms();
+    let count = refresh_at_or_after(plan.stimulus_s * 1000.0, period_ms) as usize;
+    let grid: Vec<f64> = (0..count).map(|i| i as f64 * period_ms / 1000.0).collect();
+    let (backend, device) = {
+        let info = renderer.info();
+        (info.backend, info.device)
+    };
+    // Sums over views of each cell's scores: displayed FLIP and JOD.
+    let mut flip_sums: BTreeMap<(usize, u32, usize), f64> = BTreeMap::new();
+    let mut jod_sums: BTreeMap<(usize, u32, usize), f64> = BTreeMap::new();
+    for v in 0..plan.views {
+        let view_s = scene.path.duration_s() * f64::from(v) / f64::from(plan.views);
+        let view = scene.camera_at_time(view_s);
+        for (si, &speed) in plan.speeds.iter().enumerate() {
+            let rate = rate_for_speed(&probe, view, speed)?;
+            let mut source = StimulusSource {
+                renderer: &mut *renderer,
+                turn: Turn::new(view, rate, 0.5 * plan.stimulus_s),
+                world_s: view_s,
+                width: plan.width,
+                height: plan.height,
+                duration_s: plan.stimulus_s,
+            };
+            progress.set_message(format!("view {v}, {speed} deg/s: references"));
+            let folder = plan
+                .video
+                .as_ref()
+                .map(|dir| dir.join(format!("view{v}-speed{speed}")));
+            let mut references = TimedReferences::new(plan.reference);
+            let key = ReferenceKey {
+                scene: format!("{} (view {v}, {speed} deg/s)", scene.name),
+                backend: backend.clone(),
+                device: device.clone(),
+                resolution: [plan.width, plan.height],
+                refresh_hz: plan.refresh_hz,
+                refreshes: count,
+                spp: plan.reference.spp,
+                depth: plan.reference.depth,
+                git_revision: git_revision(),
+            };
+            match &folder {
+                Some(folder) => {
+                    std::fs::create_dir_all(folder)
+                        .with_context(|| format!("cannot create {}", folder.display()))?;
+                    video::write_references(
+                        folder,
+                        &key,
+                        &grid,
+                        &mut source,
+                        &mut references,
+                        |_| true,
+                        || (),
+                    )?;
+                }
+                None => references.render_missing(&mut source, grid.iter().copied(), || ())?,
+            }
+            // A still picture: the same screen at every frame time.
+            let frame_times: &[u32] = if speed == 0.0 {
+                &plan.refreshes[..1]
+            } else {
+                &plan.refreshes
+            };
+            let mut runs = Vec::new();
+            let mut flips: Cells = BTreeMap::new();
+            for &k in frame_times {
+                for (p, point) in ladder.points.iter().enumerate() {
+                    progress
+                        .set_message(format!("view {v}, {speed} deg/s, {k} refreshes, point {p}"));
+                    let run = stimulus_run(&mut source, display, k, point.quality())?;
+                    let samples = screen_samples(&run, period_ms, |_| true);
+                    let shown = measure(&run, &samples, &references, size, ppd)?
+                        .context("a stimulus showed no refresh")?;
+                    flips.insert((k, p), shown.flip_mean);
+                    if let Some(folder) = &folder {
+                        let name = run_name(k, p);
+                        let written = video::write_run(folder, &name, &run, &display, size)?;
+                        runs.push(VideoRun {
+                            name,
+                            folder: written,
+                        });
+                    }
+                    progress.inc(1);
+                }
+            }
+            let mut jods: Cells = BTreeMap::new();
+            if let Some(folder) = &folder {
+                let names: Vec<String> = runs.iter().map(|r| r.name.clone()).collect();
+                video::write_index(
+                    folder,
+                    &VideoIndex {
+                        scene: scene.name.clone(),
+                        refresh_hz: plan.refresh_hz,
+                        refreshes: count,
+                        resolution: [plan.width, plan.height],
+                        duration_s: plan.stimulus_s,
+                        display,
+                        viewing: viewing.clone(),
+                        reference: key,
+                        runs,
+                    },
+                )?;
+                if let Some(tool) = &plan.jod {
+                    progress.set_message(format!("view {v}, {speed} deg/s: JOD"));
+                    let started = Instant::now();
+                    let scores = score_with_jod(tool, folder, &names)?;
+                    progress.println(format!(
+                        "calibrate: JOD of view {v} at {speed} deg/s in {:.0} s",
+                        started.elapsed().as_secs_f64()
+                    ));
+                    for &k in frame_times {
+                        for p in 0..ladder.points.len() {
+                            jods.insert((k, p), scores[&run_name(k, p)]);
+                        }
+                    }
+                    if !tool.keep_video {
+                        prune_video(folder)?;
+                    }
+                }
+            }
+            for (cells, sums) in [(&flips, &mut flip_sums), (&jods, &mut jod_sums)] {
+                for &k in &plan.refreshes {
+                    for p in 0..ladder.points.len() {
+                        // Speed 0 shares its one frame time's score with the others.
+                        let measured_k = if speed == 0.0 { plan.refreshes[0] } else { k };
+                        if let Some(score) = cells.get(&(measured_k, p)) {
+                            *sums.entry((si, k, p)).or_insert(0.0) += score;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let table = |metric: Metric, sums: &BTreeMap<(usize, u32, usize), f64>| MotionModel {
+        metric,
+        scene: scene.name.clone(),
+        resolution: [plan.width, plan.height],
+        refresh_hz: plan.refresh_hz,
+        stimulus_s: plan.stimulus_s,
+        viewing: serde_json::to_value(&viewing).unwrap_or(serde_json::Value::Null),
+        ladder: ladder.clone(),
+        speeds_deg_s: plan.speeds.clone(),
+        frame_times_ms: plan
+            .refreshes
+            .iter()
+            .map(|&k| f64::from(k) * period_ms)
+            .collect(),
+        scores: (0..plan.speeds.len())
+            .map(|si| {
+                plan.refreshes
+                    .iter()
+                    .map(|&k| {
+                        (0..ladder.points.len())
+                            .map(|p| sums[&(si, k, p)] / f64::from(plan.views))
+                            .collect()
+                    })
+                    .collect()
+            })
+            .collect(),
+    };
+    let flip = table(Metric::DisplayedFlip, &flip_sums);
+    flip.validate().map_err(anyhow::Error::msg)?;
+    if plan.jod.is_none() {
+        return Ok(MotionTables {
+            model: flip,
+            flip: None,
+        });
+    }
+    let jod = table(Metric::Jod, &jod_sums);
+    jod.validate().map_err(anyhow::Error::msg)?;
+    Ok(MotionTables {
+        model: jod,
+        flip: Some(flip),
+    })
+}
+
+/// The stimuli `plan` renders, for a progress bar.
+pub fn stimulus_count(plan: &MotionPlan) -> u64 {
+    let points = pick_points(&plan.ladder, plan.points, plan.max_point_ms())
+        .points
+        .len() as u64;
+    let moving = plan.speeds.iter().filter(|&&s| s > 0.0).count() as u64;
+    let still = plan.speeds.len() as u64 - moving;
+    u64::from(plan.views) * points * (moving * plan.refreshes.len() as u64 + still)
+}
+
+/// Refuses a plan that would give an empty or malformed table.
+fn check_plan(plan: &MotionPlan) -> Result<()> {
+    let rising = |v: &[f64]| v.windows(2).all(|w| w[1] > w[0]);
+    if plan.speeds.is_empty()
+        || !rising(&plan.speeds)
+        || plan.speeds.iter().any(|s| !(s.is_finite() && *s >= 0.0))
+    {
+        bail!("--speeds must be finite speeds of 0 or more, strictly rising");
+    }
+    let refreshes: Vec<f64> = plan.refreshes.iter().map(|&k| f64::from(k)).collect();
+    if refreshes.is_empty() || !rising(&refreshes) || plan.refreshes[0] == 0 {
+        bail!("--refreshes must be whole numbers of refreshes of 1 or more, strictly rising");
+    }
+    if plan.views == 0 {
+        bail!("--views must be at least 1");
+    }
+    if !(plan.stimulus_s.is_finite() && plan.stimulus_s > 0.0 && plan.stimulus_s <= 60.0) {
+        bail!("--stimulus must be a number of seconds above 0 and at most 60");
+    }
+    if plan.jod.is_some() && plan.video.is_none() {
+        bail!("--jod scores the stimuli's videos: give --video DIR");
+    }
+    plan.ladder.validate().map_err(anyhow::Error::msg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use steadyray_control::ladder::{LadderPoint, Reference};
+    use steadyray_render_cpu::CpuRenderer;
+
+    fn ladder(points: &[(f32, f32, f64, f64)]) -> Ladder {
+        Ladder {
+            scene: "corridor".into(),
+            resolution: [32, 18],
+            reference: Reference {
+                spp: 16.0,
+                depth: 4,
+                scale: 1.0,
+            },
+            views: 1,
+            points: points
+                .iter()
+                .enumerate()
+                .map(|(i, &(spp, scale, rays, ms))| LadderPoint {
+                    spp,
+                    depth: 4,
+                    scale,
+                    rays,
+                    ms,
+                    flip: 0.5 / (1.0 + i as f64),
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn points_spread_by_cost_among_the_affordable() {
+        let l = ladder(&[
+            (1.0, 0.5, 1e3, 1.0),
+            (1.0, 0.75, 2e3, 2.0),
+            (1.0, 1.0, 4e3, 4.0),
+            (2.0, 1.0, 8e3, 8.0),
+            (4.0, 1.0, 16e3, 16.0),
+            (64.0, 1.0, 1e6, 1000.0),
+        ]);
+        let picked = pick_points(&l, 3, 100.0);
+        let spp: Vec<(f32, f32)> = picked.points.iter().map(|p| (p.spp, p.scale)).collect();
+        assert_eq!(spp, [(1.0, 0.5), (1.0, 1.0), (4.0, 1.0)]);
+        picked.validate().unwrap();
+        assert_eq!(
+            pick_points(&l, 0, 100.0).points.len(),
+            5,
+            "the dearest cannot fit"
+        );
+        assert_eq!(
+            pick_points(&l, 0, 0.5).points.len(),
+            1,
+            "the cheapest stays"
+        );
+    }
+
+    #[test]
+    fn a_tiny_model_of_displayed_flip_punishes_long_frames_of_fast_motion() {
+        let scene = steadyray_scene::load_scene("corridor").unwrap();
+        let mut renderer = CpuRenderer::new();
+        renderer.load_scene(&scene).unwrap();
+        let plan = MotionPlan {
+            width: 32,
+            height: 18,
+            ladder: ladder(&[(1.0, 0.5, 1e3, 1.0), (2.0, 1.0, 4e3, 2.0)]),
+            points: 0,
+            speeds: vec![0.0, 60.0],
+            refreshes: vec![1, 3],
+            refresh_hz: 60.0,
+            stimulus_s: 0.1,
+            views: 1,
+            reference: Quality::new(4.0, 4, 1.0),
+            video: None,
+            jod: None,
+        };
+        assert_eq!(stimulus_count(&plan), 2 * (2 + 1));
+        let tables =
+            calibrate_motion(&mut renderer, &scene, &plan, &ProgressBar::hidden()).unwrap();
+        let m = tables.model;
+        assert!(tables.flip.is_none());
+        assert_eq!(m.metric, Metric::DisplayedFlip);
+        m.validate().unwrap();
+        let s = &m.scores;
+        // Still: the frame time does not matter, the better point scores better.
+        assert_eq!(s[0][0], s[0][1]);
+        assert!(s[0][0][1] < s[0][0][0], "{s:?}");
+        // Fast: three refreshes per frame show a staler world than one.
+        for p in 0..2 {
+            assert!(s[1][1][p] > s[1][0][p], "{s:?}");
+        }
+        let bad = MotionPlan {
+            refreshes: vec![2, 1],
+            ..plan
+        };
+        let err = calibrate_motion(&mut renderer, &scene, &bad, &ProgressBar::hidden());
+        assert!(err.err().unwrap().to_string().contains("--refreshes"));
+    }
+}
