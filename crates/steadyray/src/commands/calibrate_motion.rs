@@ -22,6 +22,7 @@ use crate::bench::source::{FrameSource, HandOver, Measured, PathPoint, scaled_si
 use crate::bench::video::{self, ReferenceKey, VideoIndex, VideoRun};
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -284,8 +285,8 @@ fn picture(source: &mut StimulusSource<'_>) -> Result<Rgb8Image> {
 }
 
 /// A run's name in a stimulus folder: its frame time and ladder point.
-fn run_name(refreshes: u32, point: usize) -> String {
-    format!("r{refreshes}-p{point}")
+fn run_name(refreshes: u32, q: &Quality) -> String {
+    format!("r{refreshes}-S{}-R{}-x{}", q.spp, q.depth, q.scale)
 }
 
 /// Scores of one (view, speed) stimulus folder: by (refreshes, point).
@@ -322,12 +323,12 @@ fn score_with_jod(tool: &JodTool, folder: &Path, runs: &[String]) -> Result<BTre
     read().with_context(|| format!("{}/jod.json lacks some runs", folder.display()))
 }
 
-/// Removes a scored folder's pictures and videos, keeping `video.json` and `jod.json`.
+/// Removes a scored folder's pictures and videos, keeping its scores and what it held.
 fn prune_video(folder: &Path) -> Result<()> {
     for entry in std::fs::read_dir(folder)? {
         let path = entry?.path();
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
-        if name == "video.json" || name == "jod.json" {
+        if ["video.json", "jod.json", "flip.json", "stimulus.json"].contains(&name) {
             continue;
         }
         if path.is_dir() {
@@ -338,6 +339,253 @@ fn prune_video(folder: &Path) -> Result<()> {
         .with_context(|| format!("cannot remove {}", path.display()))?;
     }
     Ok(())
+}
+
+/// What a stimulus folder holds (`stimulus.json`, written when it is complete): a later
+/// calibration reuses its scores (displayed FLIP, and JOD once scored) when this matches, so
+/// the long JOD scoring can be done folder by folder and run by run in between. A change of
+/// the renderer does not show here: delete the folders after one.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct StimulusKey {
+    scene: String,
+    resolution: [u32; 2],
+    refresh_hz: f64,
+    stimulus_s: f64,
+    view_s: f64,
+    speed_deg_s: f64,
+    reference: Quality,
+    runs: Vec<String>,
+}
+
+/// Displayed FLIP of each run of a stimulus folder (`flip.json`).
+#[derive(Debug, Serialize, Deserialize)]
+struct FlipScores {
+    displayed_flip: BTreeMap<String, f64>,
+}
+
+/// A stimulus's scores by (refreshes, point): displayed FLIP, and JOD when scored.
+struct StimulusScores {
+    flip: Cells,
+    jod: Cells,
+}
+
+/// One view turning at one speed, shown at every frame time of `refreshes`.
+struct Stimulus {
+    view: u32,
+    view_s: f64,
+    speed: f64,
+    rate: f64,
+    camera: Camera,
+    refreshes: Vec<u32>,
+}
+
+impl Stimulus {
+    /// The runs, by (refreshes, point index) and name.
+    fn runs(&self, ladder: &Ladder) -> Vec<((u32, usize), String)> {
+        let mut out = Vec::new();
+        for &k in &self.refreshes {
+            for (p, point) in ladder.points.iter().enumerate() {
+                out.push(((k, p), run_name(k, &point.quality())));
+            }
+        }
+        out
+    }
+
+    /// Renders (or reuses) the stimulus and scores every run: displayed FLIP, and JOD with
+    /// the JOD tool.
+    fn score(
+        &self,
+        renderer: &mut dyn Renderer,
+        scene: &Scene,
+        plan: &MotionPlan,
+        ladder: &Ladder,
+        progress: &ProgressBar,
+    ) -> Result<StimulusScores> {
+        let runs = self.runs(ladder);
+        let names: Vec<String> = runs.iter().map(|(_, n)| n.clone()).collect();
+        let key = StimulusKey {
+            scene: scene.name.clone(),
+            resolution: [plan.width, plan.height],
+            refresh_hz: plan.refresh_hz,
+            stimulus_s: plan.stimulus_s,
+            view_s: self.view_s,
+            speed_deg_s: self.speed,
+            reference: plan.reference,
+            runs: names.clone(),
+        };
+        let label = format!("view {}, {} deg/s", self.view, self.speed);
+        let folder = plan
+            .video
+            .as_ref()
+            .map(|dir| dir.join(format!("view{}-speed{}", self.view, self.speed)));
+        let reused = folder.as_deref().and_then(|f| reuse(f, &key));
+        let flips = match reused {
+            Some(flips) => {
+                progress.inc(runs.len() as u64);
+                flips
+            }
+            None => {
+                let output = folder.as_deref().map(|f| (f, &key));
+                self.render(renderer, scene, plan, ladder, output, progress)?
+            }
+        };
+        let by_cell = |scores: &BTreeMap<String, f64>| -> Cells {
+            runs.iter()
+                .filter_map(|(cell, name)| scores.get(name).map(|&v| (*cell, v)))
+                .collect()
+        };
+        let mut jod = Cells::new();
+        if let (Some(tool), Some(folder)) = (&plan.jod, &folder) {
+            progress.set_message(format!("{label}: JOD"));
+            let started = Instant::now();
+            let scores = score_with_jod(tool, folder, &names)?;
+            progress.println(format!(
+                "calibrate: JOD of {label} ({:.0} s)",
+                started.elapsed().as_secs_f64()
+            ));
+            jod = by_cell(&scores);
+            if !tool.keep_video {
+                prune_video(folder)?;
+            }
+        }
+        Ok(StimulusScores {
+            flip: by_cell(&flips),
+            jod,
+        })
+    }
+
+    /// Renders the references and every run and measures their displayed FLIP; given a
+    /// folder, writes the videos (`video.json`), `flip.json` and, last, `stimulus.json`
+    /// (its key).
+    fn render(
+        &self,
+        renderer: &mut dyn Renderer,
+        scene: &Scene,
+        plan: &MotionPlan,
+        ladder: &Ladder,
+        output: Option<(&Path, &StimulusKey)>,
+        progress: &ProgressBar,
+    ) -> Result<BTreeMap<String, f64>> {
+        let folder = output.map(|(folder, _)| folder);
+        let display = DisplayConfig::new(plan.refresh_hz, SyncMode::Vsync)?;
+        let viewing = ViewingSetup::standard_fhd();
+        let size = (plan.width, plan.height);
+        let ppd = viewing.pixels_per_degree(plan.width) as f32;
+        let period_ms = display.period_ms();
+        let count = refresh_at_or_after(plan.stimulus_s * 1000.0, period_ms) as usize;
+        let grid: Vec<f64> = (0..count).map(|i| i as f64 * period_ms / 1000.0).collect();
+        let info = renderer.info();
+        let mut source = StimulusSource {
+            renderer,
+            turn: Turn::new(self.camera, self.rate, 0.5 * plan.stimulus_s),
+            world_s: self.view_s,
+            width: plan.width,
+            height: plan.height,
+            duration_s: plan.stimulus_s,
+        };
+        progress.set_message(format!(
+            "view {}, {} deg/s: references",
+            self.view, self.speed
+        ));
+        let reference_key = ReferenceKey {
+            scene: format!("{} (view {}, {} deg/s)", scene.name, self.view, self.speed),
+            backend: info.backend,
+            device: info.device,
+            resolution: [plan.width, plan.height],
+            refresh_hz: plan.refresh_hz,
+            refreshes: count,
+            spp: plan.reference.spp,
+            depth: plan.reference.depth,
+            git_revision: git_revision(),
+        };
+        let mut references = TimedReferences::new(plan.reference);
+        match folder {
+            Some(folder) => {
+                std::fs::create_dir_all(folder)
+                    .with_context(|| format!("cannot create {}", folder.display()))?;
+                for done in ["stimulus.json", "video.json", "jod.json"] {
+                    let _ = std::fs::remove_file(folder.join(done));
+                }
+                video::write_references(
+                    folder,
+                    &reference_key,
+                    &grid,
+                    &mut source,
+                    &mut references,
+                    |_| true,
+                    || (),
+                )?;
+            }
+            None => references.render_missing(&mut source, grid.iter().copied(), || ())?,
+        }
+        let mut flips = BTreeMap::new();
+        let mut videos = Vec::new();
+        for ((k, p), name) in self.runs(ladder) {
+            progress.set_message(format!(
+                "view {}, {} deg/s, {k} refreshes, point {p}",
+                self.view, self.speed
+            ));
+            let run = stimulus_run(&mut source, display, k, ladder.points[p].quality())?;
+            let samples = screen_samples(&run, period_ms, |_| true);
+            let shown = measure(&run, &samples, &references, size, ppd)?
+                .context("a stimulus showed no refresh")?;
+            flips.insert(name.clone(), shown.flip_mean);
+            if let Some(folder) = folder {
+                let written = video::write_run(folder, &name, &run, &display, size)?;
+                videos.push(VideoRun {
+                    name,
+                    folder: written,
+                });
+            }
+            progress.inc(1);
+        }
+        if let Some((folder, key)) = output {
+            let text = serde_json::to_string_pretty(&FlipScores {
+                displayed_flip: flips.clone(),
+            })?;
+            write_atomically(&folder.join("flip.json"), &text)?;
+            video::write_index(
+                folder,
+                &VideoIndex {
+                    scene: scene.name.clone(),
+                    refresh_hz: plan.refresh_hz,
+                    refreshes: count,
+                    resolution: [plan.width, plan.height],
+                    duration_s: plan.stimulus_s,
+                    display,
+                    viewing,
+                    reference: reference_key,
+                    runs: videos,
+                },
+            )?;
+            write_atomically(
+                &folder.join("stimulus.json"),
+                &serde_json::to_string_pretty(key)?,
+            )?;
+        }
+        Ok(flips)
+    }
+}
+
+/// The displayed FLIP of a complete stimulus folder made for `key` (its `stimulus.json`
+/// matches and its `flip.json` holds every run), or `None`.
+fn reuse(folder: &Path, key: &StimulusKey) -> Option<BTreeMap<String, f64>> {
+    let read = |name: &str| std::fs::read_to_string(folder.join(name)).ok();
+    let stored: StimulusKey = serde_json::from_str(&read("stimulus.json")?).ok()?;
+    let flips: FlipScores = serde_json::from_str(&read("flip.json")?).ok()?;
+    (stored == *key
+        && key
+            .runs
+            .iter()
+            .all(|r| flips.displayed_flip.contains_key(r)))
+    .then_some(flips.displayed_flip)
+}
+
+/// Writes `text` under a temporary name, then renames it over `path`.
+fn write_atomically(path: &Path, text: &str) -> Result<()> {
+    let temp = path.with_extension("partial");
+    std::fs::write(&temp, text).with_context(|| format!("cannot write {}", temp.display()))?;
+    std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
 }
 
 /// The measured model: JOD when the JOD tool ran, else displayed FLIP; with JOD, the FLIP
@@ -356,18 +604,9 @@ pub fn calibrate_motion(
 ) -> Result<MotionTables> {
     check_plan(plan)?;
     let ladder = pick_points(&plan.ladder, plan.points, plan.max_point_ms());
-    let display = DisplayConfig::new(plan.refresh_hz, SyncMode::Vsync)?;
     let viewing = ViewingSetup::standard_fhd();
-    let size = (plan.width, plan.height);
-    let ppd = viewing.pixels_per_degree(plan.width) as f32;
-    let probe = MotionProbe::new(scene, size, viewing.clone())?;
-    let period_ms = display.period_ms();
-    let count = refresh_at_or_after(plan.stimulus_s * 1000.0, period_ms) as usize;
-    let grid: Vec<f64> = (0..count).map(|i| i as f64 * period_ms / 1000.0).collect();
-    let (backend, device) = {
-        let info = renderer.info();
-        (info.backend, info.device)
-    };
+    let probe = MotionProbe::new(scene, (plan.width, plan.height), viewing.clone())?;
+    let period_ms = 1000.0 / plan.refresh_hz;
     // Sums over views of each cell's scores: displayed FLIP and JOD.
     let mut flip_sums: BTreeMap<(usize, u32, usize), f64> = BTreeMap::new();
     let mut jod_sums: BTreeMap<(usize, u32, usize), f64> = BTreeMap::new();
@@ -375,116 +614,29 @@ pub fn calibrate_motion(
         let view_s = scene.path.duration_s() * f64::from(v) / f64::from(plan.views);
         let view = scene.camera_at_time(view_s);
         for (si, &speed) in plan.speeds.iter().enumerate() {
-            let rate = rate_for_speed(&probe, view, speed)?;
-            let mut source = StimulusSource {
-                renderer: &mut *renderer,
-                turn: Turn::new(view, rate, 0.5 * plan.stimulus_s),
-                world_s: view_s,
-                width: plan.width,
-                height: plan.height,
-                duration_s: plan.stimulus_s,
+            let stimulus = Stimulus {
+                view: v,
+                view_s,
+                speed,
+                rate: rate_for_speed(&probe, view, speed)?,
+                camera: view,
+                // A still picture: the same screen at every frame time.
+                refreshes: if speed == 0.0 {
+                    plan.refreshes[..1].to_vec()
+                } else {
+                    plan.refreshes.clone()
+                },
             };
-            progress.set_message(format!("view {v}, {speed} deg/s: references"));
-            let folder = plan
-                .video
-                .as_ref()
-                .map(|dir| dir.join(format!("view{v}-speed{speed}")));
-            let mut references = TimedReferences::new(plan.reference);
-            let key = ReferenceKey {
-                scene: format!("{} (view {v}, {speed} deg/s)", scene.name),
-                backend: backend.clone(),
-                device: device.clone(),
-                resolution: [plan.width, plan.height],
-                refresh_hz: plan.refresh_hz,
-                refreshes: count,
-                spp: plan.reference.spp,
-                depth: plan.reference.depth,
-                git_revision: git_revision(),
-            };
-            match &folder {
-                Some(folder) => {
-                    std::fs::create_dir_all(folder)
-                        .with_context(|| format!("cannot create {}", folder.display()))?;
-                    video::write_references(
-                        folder,
-                        &key,
-                        &grid,
-                        &mut source,
-                        &mut references,
-                        |_| true,
-                        || (),
-                    )?;
-                }
-                None => references.render_missing(&mut source, grid.iter().copied(), || ())?,
-            }
-            // A still picture: the same screen at every frame time.
-            let frame_times: &[u32] = if speed == 0.0 {
-                &plan.refreshes[..1]
-            } else {
-                &plan.refreshes
-            };
-            let mut runs = Vec::new();
-            let mut flips: Cells = BTreeMap::new();
-            for &k in frame_times {
-                for (p, point) in ladder.points.iter().enumerate() {
-                    progress
-                        .set_message(format!("view {v}, {speed} deg/s, {k} refreshes, point {p}"));
-                    let run = stimulus_run(&mut source, display, k, point.quality())?;
-                    let samples = screen_samples(&run, period_ms, |_| true);
-                    let shown = measure(&run, &samples, &references, size, ppd)?
-                        .context("a stimulus showed no refresh")?;
-                    flips.insert((k, p), shown.flip_mean);
-                    if let Some(folder) = &folder {
-                        let name = run_name(k, p);
-                        let written = video::write_run(folder, &name, &run, &display, size)?;
-                        runs.push(VideoRun {
-                            name,
-                            folder: written,
-                        });
-                    }
-                    progress.inc(1);
-                }
-            }
-            let mut jods: Cells = BTreeMap::new();
-            if let Some(folder) = &folder {
-                let names: Vec<String> = runs.iter().map(|r| r.name.clone()).collect();
-                video::write_index(
-                    folder,
-                    &VideoIndex {
-                        scene: scene.name.clone(),
-                        refresh_hz: plan.refresh_hz,
-                        refreshes: count,
-                        resolution: [plan.width, plan.height],
-                        duration_s: plan.stimulus_s,
-                        display,
-                        viewing: viewing.clone(),
-                        reference: key,
-                        runs,
-                    },
-                )?;
-                if let Some(tool) = &plan.jod {
-                    progress.set_message(format!("view {v}, {speed} deg/s: JOD"));
-                    let started = Instant::now();
-                    let scores = score_with_jod(tool, folder, &names)?;
-                    progress.println(format!(
-                        "calibrate: JOD of view {v} at {speed} deg/s in {:.0} s",
-                        started.elapsed().as_secs_f64()
-                    ));
-                    for &k in frame_times {
-                        for p in 0..ladder.points.len() {
-                            jods.insert((k, p), scores[&run_name(k, p)]);
-                        }
-                    }
-                    if !tool.keep_video {
-                        prune_video(folder)?;
-                    }
-                }
-            }
-            for (cells, sums) in [(&flips, &mut flip_sums), (&jods, &mut jod_sums)] {
+            let scores = stimulus.score(renderer, scene, plan, &ladder, progress)?;
+            for (cells, sums) in [(&scores.flip, &mut flip_sums), (&scores.jod, &mut jod_sums)] {
                 for &k in &plan.refreshes {
                     for p in 0..ladder.points.len() {
                         // Speed 0 shares its one frame time's score with the others.
-                        let measured_k = if speed == 0.0 { plan.refreshes[0] } else { k };
+                        let measured_k = if speed == 0.0 {
+                            stimulus.refreshes[0]
+                        } else {
+                            k
+                        };
                         if let Some(score) = cells.get(&(measured_k, p)) {
                             *sums.entry((si, k, p)).or_insert(0.0) += score;
                         }
@@ -600,6 +752,46 @@ mod tests {
                 })
                 .collect(),
         }
+    }
+
+    #[test]
+    fn a_complete_stimulus_folder_of_the_same_key_is_reused() {
+        let dir = std::env::temp_dir().join(format!("steadyray-stimulus-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let key = StimulusKey {
+            scene: "corridor".into(),
+            resolution: [32, 18],
+            refresh_hz: 60.0,
+            stimulus_s: 0.5,
+            view_s: 0.0,
+            speed_deg_s: 8.0,
+            reference: Quality::new(16.0, 16, 1.0),
+            runs: vec!["r1-S1-R16-x1".into(), "r2-S1-R16-x1".into()],
+        };
+        assert_eq!(reuse(&dir, &key), None, "an empty folder");
+        let flips: BTreeMap<String, f64> = [
+            ("r1-S1-R16-x1".to_string(), 0.1),
+            ("r2-S1-R16-x1".to_string(), 0.2),
+        ]
+        .into();
+        let text = serde_json::to_string(&FlipScores {
+            displayed_flip: flips.clone(),
+        })
+        .unwrap();
+        write_atomically(&dir.join("flip.json"), &text).unwrap();
+        assert_eq!(reuse(&dir, &key), None, "no stimulus.json: not complete");
+        write_atomically(
+            &dir.join("stimulus.json"),
+            &serde_json::to_string(&key).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(reuse(&dir, &key), Some(flips));
+        let other = StimulusKey {
+            speed_deg_s: 32.0,
+            ..key
+        };
+        assert_eq!(reuse(&dir, &other), None, "another stimulus");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
