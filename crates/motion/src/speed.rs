@@ -3,12 +3,13 @@
 //! A sample of the screen shows a world point P: the primary hit of the eye ray through it, or,
 //! where the ray leaves the scene, the point at infinity along it (the background turns with
 //! the camera but does not move with it). Projected into the frame's camera P lies at (x, y)
-//! on the normalised screen [−1, 1]² (x right, y up); into the previous frame's camera, at
-//! (x′, y′). On the
-//! viewing set-up's display (the picture shown full screen, `ViewingSetup`) both positions
-//! are points on the panel, and the sample's speed is the visual angle between the eye's
-//! directions to them, over the time between the two frames. Objects are taken as still;
-//! points that lay behind the previous camera are left out.
+//! on the normalised screen [−1, 1]² (x right, y up); at the previous frame's time the point
+//! was at P′ (P itself on a still object; where the object's motion had it then on a moving
+//! one), and projected into the previous frame's camera P′ lay at (x′, y′). On the viewing
+//! set-up's display (the picture shown full screen, `ViewingSetup`) both positions are points
+//! on the panel, and the sample's speed is the visual angle between the eye's directions to
+//! them, over the time between the two frames. Points that lay behind the previous camera
+//! are left out.
 
 use glam::{DVec3, Vec3};
 use serde::Serialize;
@@ -29,10 +30,18 @@ pub struct ScreenSpeed {
 /// What a sample of the screen shows: a point, or a direction for the background.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Seen {
-    /// The primary hit, a world position.
-    Point(Vec3),
+    /// The primary hit: its world position at the frame's time, and at the previous frame's
+    /// (the same on a still object).
+    Point { now: Vec3, before: Vec3 },
     /// No hit: the background in this direction.
     Direction(Vec3),
+}
+
+impl Seen {
+    /// A point on something that does not move.
+    pub fn still(p: Vec3) -> Self {
+        Seen::Point { now: p, before: p }
+    }
 }
 
 /// A camera's projection onto the normalised screen [−1, 1]² of an image of a given aspect.
@@ -61,10 +70,12 @@ impl Projection {
         }
     }
 
-    /// Where `seen` lies on the normalised screen, or `None` behind the camera.
-    fn project(&self, seen: Seen) -> Option<(f64, f64)> {
+    /// Where `seen` lies on the normalised screen (at the frame's time, or at the previous
+    /// frame's when `before`), or `None` behind the camera.
+    fn project(&self, seen: Seen, before: bool) -> Option<(f64, f64)> {
         let v = match seen {
-            Seen::Point(p) => p.as_dvec3() - self.eye,
+            Seen::Point { now, .. } if !before => now.as_dvec3() - self.eye,
+            Seen::Point { before, .. } => before.as_dvec3() - self.eye,
             Seen::Direction(d) => d.as_dvec3(),
         };
         let z = v.dot(self.forward);
@@ -111,8 +122,8 @@ pub fn sample_speeds(
     samples
         .iter()
         .filter_map(|&seen| {
-            let at = after.project(seen)?;
-            let was = before.project(seen)?;
+            let at = after.project(seen, false)?;
+            let was = before.project(seen, true)?;
             let angle = angle_deg(eye_direction(viewing, at), eye_direction(viewing, was));
             Some(angle / dt_s)
         })
@@ -160,7 +171,7 @@ mod tests {
         let want = (x * half_width / viewing.distance_m).atan().to_degrees() / dt;
         for seen in [
             Seen::Direction(now.forward),
-            Seen::Point(eye + 3.0 * now.forward),
+            Seen::still(eye + 3.0 * now.forward),
         ] {
             let got = sample_speeds(&before, &now, dt, ASPECT, &viewing, &[seen]);
             assert_eq!(got.len(), 1);
@@ -176,8 +187,8 @@ mod tests {
         let look = |eye: Vec3| Camera::look_at(eye, eye + Vec3::NEG_Z, Vec3::Y, 60.0);
         let (before, now) = (look(Vec3::ZERO), look(Vec3::new(0.01, 0.0, 0.0)));
         let speed_at = |seen| sample_speeds(&before, &now, 0.01, ASPECT, &viewing, &[seen]);
-        let near = speed_at(Seen::Point(Vec3::new(0.01, 0.0, -1.0)))[0];
-        let far = speed_at(Seen::Point(Vec3::new(0.01, 0.0, -4.0)))[0];
+        let near = speed_at(Seen::still(Vec3::new(0.01, 0.0, -1.0)))[0];
+        let far = speed_at(Seen::still(Vec3::new(0.01, 0.0, -4.0)))[0];
         let sky = speed_at(Seen::Direction(Vec3::NEG_Z))[0];
         assert!((near / far - 4.0).abs() < 0.01, "{near} vs {far}");
         assert!(sky.abs() < 1e-9);
@@ -195,7 +206,7 @@ mod tests {
     fn still_cameras_behind_points_and_bad_times_give_no_motion() {
         let viewing = ViewingSetup::standard_fhd();
         let c = Camera::yaw_pitch(Vec3::ZERO, 0.3, 0.1, 60.0);
-        let seen = Seen::Point(Vec3::new(0.2, 0.1, -2.0));
+        let seen = Seen::still(Vec3::new(0.2, 0.1, -2.0));
         let still = sample_speeds(&c, &c, 0.02, ASPECT, &viewing, &[seen]);
         assert!(still[0].abs() < 1e-6, "{still:?}");
         let behind = Camera::yaw_pitch(Vec3::ZERO, std::f32::consts::PI, 0.0, 60.0);
@@ -203,6 +214,30 @@ mod tests {
         for dt in [0.0, -1.0, f64::NAN] {
             assert!(sample_speeds(&c, &c, dt, ASPECT, &viewing, &[seen]).is_empty());
         }
+    }
+
+    #[test]
+    fn a_moving_object_moves_on_screen_under_a_still_camera() {
+        let viewing = ViewingSetup::standard_fhd();
+        let c = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 60.0);
+        let seen = Seen::Point {
+            now: Vec3::new(0.01, 0.0, -1.0),
+            before: Vec3::ZERO.with_z(-1.0),
+        };
+        let moving = sample_speeds(&c, &c, 0.01, ASPECT, &viewing, &[seen])[0];
+        // As fast as the still point under the camera stepping 1 cm the other way.
+        let stepped = Camera::look_at(
+            Vec3::new(-0.01, 0.0, 0.0),
+            Vec3::new(-0.01, 0.0, -1.0),
+            Vec3::Y,
+            60.0,
+        );
+        let still = Seen::still(Vec3::new(0.0, 0.0, -1.0));
+        let shifted = sample_speeds(&c, &stepped, 0.01, ASPECT, &viewing, &[still])[0];
+        assert!(
+            moving > 10.0 && (moving / shifted - 1.0).abs() < 1e-3,
+            "{moving} vs {shifted}"
+        );
     }
 
     #[test]

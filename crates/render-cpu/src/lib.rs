@@ -110,13 +110,28 @@ impl CpuRenderer {
         Ok(path)
     }
 
-    /// Where the ray from `origin` along `dir` first meets a surface: t of the nearest hit at
-    /// `origin + t · dir`, or `None` when it leaves the scene (the primary hit an eye ray
-    /// would shade: what measuring motion on screen reprojects).
-    pub fn first_hit(&self, origin: Vec3, dir: Vec3) -> Result<Option<f32>, RenderError> {
-        let world = self.world.as_ref().ok_or(RenderError::NoScene)?;
-        let ray = ray::Ray::new(origin.into(), Vec3A::from(dir));
-        Ok(world.closest_hit(&ray).map(|hit| hit.t))
+    /// Where rays from `origin` along each of `dirs` first meet a surface of the world at
+    /// scene time `time_s`: per ray, t of the nearest hit at `origin + t · dir` and the index
+    /// (in the scene's objects) of the object hit, or `None` when it leaves the scene. The
+    /// primary hits an eye ray would shade: what measuring motion on screen reprojects.
+    pub fn first_hits(
+        &mut self,
+        time_s: f64,
+        origin: Vec3,
+        dirs: &[Vec3],
+    ) -> Result<Vec<Option<(f32, usize)>>, RenderError> {
+        check_time(time_s)?;
+        let world = self.world.as_mut().ok_or(RenderError::NoScene)?;
+        self.pool.install(|| world.set_time(time_s))?;
+        Ok(dirs
+            .iter()
+            .map(|&dir| {
+                let ray = ray::Ray::new(origin.into(), Vec3A::from(dir));
+                world
+                    .closest_hit(&ray)
+                    .map(|hit| (hit.t, world.object_of(hit.prim) as usize))
+            })
+            .collect())
     }
 }
 

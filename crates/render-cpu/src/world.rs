@@ -15,7 +15,7 @@ use steadyray_accel::{Bounds, TopLayout, TopLevel};
 use steadyray_render::RenderError;
 use steadyray_render::surface_motion::{SurfaceMove, surface_moves};
 use steadyray_render::two_level::{Instance, Leaf, SceneLayout};
-use steadyray_scene::Scene;
+use steadyray_scene::{Scene, Shape};
 
 /// Which primitive a ray hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,6 +80,13 @@ pub(crate) struct World {
     leaves: Vec<Leaf>,
     boxes: Vec<Bounds>,
     leaf_ids: Vec<u32>,
+    /// The object (index in the scene) of each leaf, and of each of the frame's spheres,
+    /// quads and instances, and of each plane: what a hit belongs to.
+    leaf_objects: Vec<u32>,
+    sphere_objects: Vec<u32>,
+    quad_objects: Vec<u32>,
+    instance_objects: Vec<u32>,
+    plane_objects: Vec<u32>,
 }
 
 impl World {
@@ -125,6 +132,17 @@ impl World {
             leaves: Vec::new(),
             boxes: Vec::new(),
             leaf_ids: Vec::new(),
+            leaf_objects: Vec::new(),
+            sphere_objects: Vec::new(),
+            quad_objects: Vec::new(),
+            instance_objects: Vec::new(),
+            plane_objects: scene
+                .objects
+                .iter()
+                .enumerate()
+                .filter(|(_, o)| matches!(o.shape, Shape::Plane { .. }))
+                .map(|(i, _)| i as u32)
+                .collect(),
         };
         world.set_time(0.0)?;
         Ok(world)
@@ -138,12 +156,13 @@ impl World {
             return Ok(0.0);
         }
         let start = Instant::now();
-        self.layout.leaves_at(
+        self.layout.leaves_and_objects_at(
             &self.scene,
             time_s,
             &mut self.leaves,
             &mut self.boxes,
             &mut self.leaf_ids,
+            &mut self.leaf_objects,
         );
         self.leaf_refs.clear();
         self.spheres.clear();
@@ -152,7 +171,10 @@ impl World {
         self.quad_ids.clear();
         self.instance_ids.clear();
         self.instances.clear();
-        for (leaf, &id) in self.leaves.iter().zip(&self.leaf_ids) {
+        self.sphere_objects.clear();
+        self.quad_objects.clear();
+        self.instance_objects.clear();
+        for ((leaf, &id), &object) in self.leaves.iter().zip(&self.leaf_ids).zip(&self.leaf_objects) {
             let leaf_ref = match *leaf {
                 Leaf::Sphere {
                     center,
@@ -161,6 +183,7 @@ impl World {
                 } => {
                     self.spheres.push(Sphere::new(center, radius, material));
                     self.sphere_ids.push(id);
+                    self.sphere_objects.push(object);
                     LeafRef::Sphere(self.spheres.len() as u32 - 1)
                 }
                 Leaf::Quad {
@@ -175,11 +198,13 @@ impl World {
                     })?;
                     self.quads.push(quad);
                     self.quad_ids.push(id);
+                    self.quad_objects.push(object);
                     LeafRef::Quad(self.quads.len() as u32 - 1)
                 }
                 Leaf::Instance(instance) => {
                     self.instances.push(instance);
                     self.instance_ids.push(id);
+                    self.instance_objects.push(object);
                     LeafRef::Instance(self.instances.len() as u32 - 1)
                 }
             };
@@ -289,6 +314,16 @@ impl World {
             Prim::Triangle { instance, .. } => self.instances[instance as usize].material,
         };
         &self.materials[m as usize]
+    }
+
+    /// The index in the scene's objects of the object `prim` belongs to.
+    pub fn object_of(&self, prim: Prim) -> u32 {
+        match prim {
+            Prim::Sphere(i) => self.sphere_objects[i as usize],
+            Prim::Quad(i) => self.quad_objects[i as usize],
+            Prim::Plane(i) => self.plane_objects[i as usize],
+            Prim::Triangle { instance, .. } => self.instance_objects[instance as usize],
+        }
     }
 
     /// The temporal mode's surface id of `prim` (`docs/temporal.md`): its object's (and

@@ -241,14 +241,30 @@ impl SceneLayout {
         boxes: &mut Vec<Bounds>,
         surfaces: &mut Vec<u32>,
     ) {
+        self.leaves_and_objects_at(scene, t_s, leaves, boxes, surfaces, &mut Vec::new());
+    }
+
+    /// [`SceneLayout::leaves_at`], and in `objects` (cleared first) the index in
+    /// `scene.objects` of each leaf's object: what a hit belongs to, to follow its motion.
+    pub fn leaves_and_objects_at(
+        &self,
+        scene: &Scene,
+        t_s: f64,
+        leaves: &mut Vec<Leaf>,
+        boxes: &mut Vec<Bounds>,
+        surfaces: &mut Vec<u32>,
+        objects: &mut Vec<u32>,
+    ) {
         leaves.clear();
         boxes.clear();
         surfaces.clear();
-        for ((obj, &mesh), &surface) in scene
+        objects.clear();
+        for (index, ((obj, &mesh), &surface)) in scene
             .objects
             .iter()
             .zip(&self.object_mesh)
             .zip(&self.surface_base)
+            .enumerate()
         {
             let material = obj.material as u32;
             match obj.pose_at(t_s) {
@@ -350,6 +366,8 @@ impl SceneLayout {
                     }
                 }
             }
+            // Leaves pushed for this object (a `continue` above pushes none).
+            objects.resize(leaves.len(), index as u32);
         }
     }
 }

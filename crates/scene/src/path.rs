@@ -361,7 +361,7 @@ mod tests {
         );
         // Twice the duration plays the stretches at half speed.
         let slow = CameraPath {
-            duration_s: Some(24.0),
+            duration_s: Some(2.0 * PANS_DURATION_S),
             ..path.clone()
         };
         let (a, b) = (

@@ -29,6 +29,30 @@ pub enum Pose<'a> {
 }
 
 impl Object {
+    /// The map taking the object's points as its shape places them (no motion) to where
+    /// they are at scene time `t_s`: O + offset(t)·(x − O) about its placement origin O (a
+    /// sphere's centre, a quad's corner, a mesh's `translate`; the identity without motion),
+    /// or `None` when it does not exist then. What a point on it moved by between two times.
+    pub fn placement_at(&self, t_s: f64) -> Option<DAffine3> {
+        let Some(motion) = &self.motion else {
+            return Some(DAffine3::IDENTITY);
+        };
+        if !motion.is_visible(t_s) {
+            return None;
+        }
+        let origin = DVec3::from(match &self.shape {
+            &Shape::Sphere { center, .. } => center,
+            &Shape::Quad { corner, .. } => corner,
+            &Shape::Plane { point, .. } => point,
+            Shape::Mesh { placement, .. } => placement.translate,
+        });
+        Some(
+            DAffine3::from_translation(origin)
+                * motion.offset_at(t_s)
+                * DAffine3::from_translation(-origin),
+        )
+    }
+
     /// The object at scene time `t_s`, or `None` when it does not exist then. An object
     /// without motion is where its shape says, at every time.
     pub fn pose_at(&self, t_s: f64) -> Option<Pose<'_>> {
@@ -118,6 +142,46 @@ mod tests {
             ],
             ..Default::default()
         }
+    }
+
+    #[test]
+    fn a_point_on_an_object_follows_its_placement() {
+        let ball = moving(
+            Shape::Sphere {
+                center: Vec3::new(0.0, 1.0, 0.0),
+                radius: 0.5,
+            },
+            slide(),
+        );
+        // The top of the ball at rest; at t = 1 the ball has moved 2 along x, turned 90°
+        // and doubled: its top is 1 above the new centre.
+        let top = DVec3::new(0.0, 1.5, 0.0);
+        let moved = ball.placement_at(1.0).unwrap().transform_point3(top);
+        assert!(
+            (moved - DVec3::new(2.0, 2.0, 0.0)).length() < 1e-9,
+            "{moved}"
+        );
+        let fixed = Object::fixed(
+            "f",
+            Shape::Sphere {
+                center: Vec3::ZERO,
+                radius: 1.0,
+            },
+            0,
+        );
+        assert_eq!(fixed.placement_at(5.0), Some(DAffine3::IDENTITY));
+        let hidden = moving(
+            Shape::Sphere {
+                center: Vec3::ZERO,
+                radius: 1.0,
+            },
+            Motion {
+                visible: Some(vec![[0.0, 1.0]]),
+                ..Default::default()
+            },
+        );
+        assert!(hidden.placement_at(0.5).is_some());
+        assert_eq!(hidden.placement_at(2.0), None);
     }
 
     #[test]

@@ -118,7 +118,7 @@ impl FrameSource for RendererSource {
             max_depth: q.depth,
         };
         let stats = self.renderer.render(&camera, time_s, &settings)?;
-        let speed = self.motion.next(Shot { camera, time_s })?;
+        let speed = self.motion.next(Shot::at(camera, time_s))?;
         let f = camera.forward;
         Ok(Measured {
             report: FrameReport {

@@ -148,16 +148,18 @@ impl Turn {
 
 /// The yaw rate that moves the picture of `view` at `speed` deg/s on average: the turn is a
 /// rotation about the eye, so the speed is proportional to the rate (measured at 10°/s).
-fn rate_for_speed(probe: &MotionProbe, view: Camera, speed: f64) -> Result<f64> {
+fn rate_for_speed(probe: &mut MotionProbe, view: Camera, world_s: f64, speed: f64) -> Result<f64> {
     if speed == 0.0 {
         return Ok(0.0);
     }
     let unit = 10f64.to_radians();
     let turn = Turn::new(view, unit, 0.0);
     let dt = 1.0 / 240.0;
+    // The world stays at the view's time: only the camera turns.
     let at = |t: f64| Shot {
         camera: turn.camera(t),
         time_s: t,
+        world_s,
     };
     let measured: ScreenSpeed = probe.measure(&at(0.0), &at(dt))?;
     if measured.mean_deg_s <= 0.0 {
@@ -214,6 +216,7 @@ impl FrameSource for StimulusSource<'_> {
                 speed_deg_s: 0.0,
             },
             wall_ms: stats.wall_ms,
+            accel_ms: stats.accel_ms,
             angle: 0.0,
             speed: ScreenSpeed::default(),
         })
@@ -605,7 +608,7 @@ pub fn calibrate_motion(
     check_plan(plan)?;
     let ladder = pick_points(&plan.ladder, plan.points, plan.max_point_ms());
     let viewing = ViewingSetup::standard_fhd();
-    let probe = MotionProbe::new(scene, (plan.width, plan.height), viewing.clone())?;
+    let mut probe = MotionProbe::new(scene, (plan.width, plan.height), viewing.clone())?;
     let period_ms = 1000.0 / plan.refresh_hz;
     // Sums over views of each cell's scores: displayed FLIP and JOD.
     let mut flip_sums: BTreeMap<(usize, u32, usize), f64> = BTreeMap::new();
@@ -618,7 +621,7 @@ pub fn calibrate_motion(
                 view: v,
                 view_s,
                 speed,
-                rate: rate_for_speed(&probe, view, speed)?,
+                rate: rate_for_speed(&mut probe, view, view_s, speed)?,
                 camera: view,
                 // A still picture: the same screen at every frame time.
                 refreshes: if speed == 0.0 {

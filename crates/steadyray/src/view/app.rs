@@ -664,6 +664,7 @@ impl Running {
                 let motion = live.motion.next(Shot {
                     camera,
                     time_s: t_s,
+                    world_s: live.scene_time_s,
                 })?;
                 let report = FrameReport {
                     tp_ms: render_ms,
