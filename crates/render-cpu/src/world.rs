@@ -174,7 +174,12 @@ impl World {
         self.sphere_objects.clear();
         self.quad_objects.clear();
         self.instance_objects.clear();
-        for ((leaf, &id), &object) in self.leaves.iter().zip(&self.leaf_ids).zip(&self.leaf_objects) {
+        for ((leaf, &id), &object) in self
+            .leaves
+            .iter()
+            .zip(&self.leaf_ids)
+            .zip(&self.leaf_objects)
+        {
             let leaf_ref = match *leaf {
                 Leaf::Sphere {
                     center,

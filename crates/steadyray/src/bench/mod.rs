@@ -787,6 +787,7 @@ mod tests {
                     scale: 1.0,
                 },
                 views: 1,
+                temporal_frames: None,
                 points: vec![point],
             },
             speeds_deg_s: vec![0.0],

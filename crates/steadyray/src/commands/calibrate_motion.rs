@@ -33,7 +33,7 @@ use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, ViewingSetup};
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Image, RenderSettings, Renderer};
+use steadyray_render::{Image, RenderSettings, Renderer, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
 /// What to measure.
@@ -236,6 +236,14 @@ impl FrameSource for StimulusSource<'_> {
 
     fn load_changes(&self, _n: u32) -> Option<Vec<usize>> {
         None
+    }
+
+    fn set_temporal(&mut self, on: bool) -> Result<()> {
+        let history = TemporalSettings {
+            width: self.width,
+            height: self.height,
+        };
+        Ok(self.renderer.set_temporal(on.then_some(history))?)
     }
 
     fn last_image(&mut self) -> Result<Option<Image>> {
@@ -742,6 +750,7 @@ mod tests {
                 scale: 1.0,
             },
             views: 1,
+            temporal_frames: None,
             points: points
                 .iter()
                 .enumerate()

@@ -212,7 +212,11 @@ fn scored_methods(summary: &Value) -> Vec<Scored> {
         .get("band_ms")
         .and_then(Value::as_array)
         .map(|b| {
-            let v: Vec<String> = b.iter().filter_map(Value::as_f64).map(|x| format!("{x:.3}")).collect();
+            let v: Vec<String> = b
+                .iter()
+                .filter_map(Value::as_f64)
+                .map(|x| format!("{x:.3}"))
+                .collect();
             v.join("-")
         })
         .unwrap_or_default();
@@ -271,7 +275,10 @@ pub fn spearman(a: &[f64], b: &[f64]) -> Option<f64> {
 /// the largest JOD differences first.
 fn agreement(methods: &[Scored]) -> Result<String> {
     if methods.len() < 3 {
-        bail!("{} scored methods: rank correlations need at least 3", methods.len());
+        bail!(
+            "{} scored methods: rank correlations need at least 3",
+            methods.len()
+        );
     }
     let jod: Vec<f64> = methods.iter().map(|m| m.jod).collect();
     let mut out = format!(
@@ -359,7 +366,10 @@ mod tests {
         assert!(close(spearman(&[1.0, 2.0, 3.0], &[10.0, 20.0, 30.0]), 1.0));
         assert!(close(spearman(&[1.0, 2.0, 3.0], &[3.0, 2.0, 1.0]), -1.0));
         // Ranks 1 2 3 4 against 1 3 2 4: 1 − 6·2/(4·15) = 0.8.
-        assert!(close(spearman(&[1.0, 2.0, 3.0, 4.0], &[1.0, 3.0, 2.0, 4.0]), 0.8));
+        assert!(close(
+            spearman(&[1.0, 2.0, 3.0, 4.0], &[1.0, 3.0, 2.0, 4.0]),
+            0.8
+        ));
         assert_eq!(spearman(&[1.0, 1.0, 1.0], &[1.0, 2.0, 3.0]), None);
     }
 
@@ -379,9 +389,15 @@ mod tests {
         let table = agreement(&methods).unwrap();
         assert!(table.contains("| displayed_fps | +1.000 |"), "{table}");
         // FLIP orders a (8.0) below b (7.0): one discordant pair of three.
-        assert!(table.contains("| displayed_flip_mean | +0.500 |"), "{table}");
+        assert!(
+            table.contains("| displayed_flip_mean | +0.500 |"),
+            "{table}"
+        );
         assert!(table.contains("1 of 3 pairs"), "{table}");
-        assert!(table.contains("| a [15.000-20.000] | b [15.000-20.000] | 1.000 |"), "{table}");
+        assert!(
+            table.contains("| a [15.000-20.000] | b [15.000-20.000] | 1.000 |"),
+            "{table}"
+        );
         assert!(table.contains("| frame_flip_mean | - |"), "{table}");
         assert!(agreement(&methods[..2]).is_err());
     }
