@@ -71,9 +71,9 @@ def parse_args():
     p.add_argument(
         "--chunk",
         type=int,
-        default=8192,
-        help="rays per embreex call (raybench's rayon chunks are 1024 rays; each embreex "
-        "call costs a few microseconds of Python, which larger chunks spread thinner)",
+        default=1024,
+        help="rays per embreex call and per task, as raybench's (each call costs about a "
+        "microsecond of Python, reported as embree_call_share)",
     )
     p.add_argument(
         "--robust",
