@@ -383,6 +383,56 @@ fn playback_shows_recorded_frames() {
     assert_eq!(shot.get_pixel(630, 350).0, [180, 80, 90, 255]);
 }
 
+/// `view --band refresh:2` sets the band from the display after its first frames: under
+/// Xvfb's 60 Hz (or the 60 Hz assumed), frames handed over by every second refresh.
+#[test]
+fn the_band_follows_the_display() {
+    let xvfb = match Xvfb::start() {
+        Ok(x) => x,
+        Err(why) => skip!("no X server for the window test: {why}"),
+    };
+    let (w, h) = (WINDOW.0.to_string(), WINDOW.1.to_string());
+    let pixel = PIXEL.to_string();
+    let out = run(
+        Some(&xvfb.display),
+        &[
+            "view",
+            "--backend",
+            "cpu",
+            "--band",
+            "refresh:2",
+            "--width",
+            &w,
+            "--height",
+            &h,
+            "--pixel-size",
+            &pixel,
+            "--frames",
+            "30",
+        ],
+    );
+    let stderr = text(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    if !out.status.success() && stderr.contains("no GPU adapter") {
+        skip!("no GPU adapter for the window: {stderr}");
+    }
+    assert!(out.status.success(), "view failed:\n{stderr}");
+    assert!(stderr.contains("--band refresh at"), "{stderr}");
+    let summary: Value = serde_json::from_str(text(&out.stdout).trim()).unwrap();
+    let band = &summary["band_ms"];
+    let (tmin, tmax) = (band[0].as_f64().unwrap(), band[1].as_f64().unwrap());
+    // Tmax = 0.95 · 2 refreshes − the hand-over; the band is 0.2 of the interval wide.
+    let hz = stderr
+        .split("--band refresh at ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no refresh rate in: {stderr}"));
+    let interval = 2000.0 / hz;
+    assert!(tmax < 0.95 * interval && tmax > 0.5 * interval, "{summary}");
+    assert!((tmax - tmin - 0.2 * interval).abs() < 0.02, "{summary}");
+}
+
 #[test]
 fn no_display_is_a_clean_error() {
     let out = run(None, &["view", "--frames", "1"]);

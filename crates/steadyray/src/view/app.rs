@@ -4,6 +4,7 @@
 
 use super::camera::{FlyCamera, Sweep};
 use super::capture::Screenshot;
+use super::display_band::DisplayBand;
 use super::frames::{LiveRenderer, Upload};
 use super::history::{FrameHistory, Sample, Spread};
 use super::hud::{self, HudChange, HudEdit, HudFacts};
@@ -232,6 +233,10 @@ struct Running {
     shot_requested: bool,
     /// The `--frames` run is complete.
     finished: bool,
+    /// `--band refresh[:M]` until its hand-over is measured.
+    display_band: Option<DisplayBand>,
+    /// The last live frame's hand-over to the window, ms.
+    hand_over_ms: Option<f64>,
 }
 
 /// Full-scale frame size for a window: one rendered pixel per `pixel_size` window pixels.
@@ -462,6 +467,16 @@ impl Running {
             Mode::Live(live) => (live.control.name(), live.control.bounds()),
             Mode::Playback(_) => ("fixed", steadyray_control::Bounds::default()),
         };
+        let display_band = match plan.aligned {
+            Some(multiple) => {
+                let refresh_hz = window
+                    .current_monitor()
+                    .and_then(|m| m.refresh_rate_millihertz())
+                    .map(|mhz| f64::from(mhz) / 1000.0);
+                Some(DisplayBand::new(multiple, refresh_hz)?)
+            }
+            None => None,
+        };
         let now = Instant::now();
         Ok(Self {
             hud_edit: HudEdit {
@@ -499,6 +514,8 @@ impl Running {
             screenshot: plan.screenshot,
             shot_requested: false,
             finished: false,
+            display_band,
+            hand_over_ms: None,
         })
     }
 
@@ -684,7 +701,9 @@ impl Running {
                     quality: q,
                     rays: stats.rays.total(),
                 };
+                let handing = Instant::now();
                 let image = live.renderer.image(&self.device, &self.queue)?;
+                self.hand_over_ms = Some(handing.elapsed().as_secs_f64() * 1e3);
                 let motion_facts = (Some(motion.mean_deg_s), live.control.target_frame_ms());
                 (image, Some(sample), None, motion_facts)
             }
@@ -773,11 +792,40 @@ impl Running {
         for change in ui.changes {
             self.apply(change);
         }
+        if let Some(ms) = self.hand_over_ms.take() {
+            self.align_band(ms);
+        }
         if let Some(shot) = shot {
             self.save_shot(&shot, ends_run)?;
         }
         self.finished = ends_run;
         Ok(if ends_run { Flow::Exit } else { Flow::Continue })
+    }
+
+    /// Takes a frame's hand-over towards `--band refresh[:M]`, and sets the band once it is
+    /// measured.
+    fn align_band(&mut self, hand_over_ms: f64) {
+        let Some(pending) = &mut self.display_band else {
+            return;
+        };
+        match pending.observe(hand_over_ms) {
+            None => {}
+            Some(Ok(b)) => {
+                eprintln!(
+                    "steadyray view: --band refresh at {:.2} Hz: hand-over {:.2} ms (median), band [{:.2}, {:.2}] ms",
+                    b.refresh_hz, b.hand_over_ms, b.tmin_ms, b.tmax_ms
+                );
+                self.display_band = None;
+                self.apply(HudChange::Band {
+                    tmin_ms: b.tmin_ms,
+                    tmax_ms: b.tmax_ms,
+                });
+            }
+            Some(Err(e)) => {
+                self.display_band = None;
+                self.message = Some(format!("--band refresh: {e:#}"));
+            }
+        }
     }
 
     /// Writes a captured frame: to `--screenshot` when it ends the run, else (F12) to a

@@ -10,6 +10,7 @@
 mod app;
 mod camera;
 mod capture;
+mod display_band;
 mod frames;
 mod history;
 mod hud;
@@ -45,6 +46,12 @@ pub struct ViewArgs {
     /// Upper edge of the frame-time band, ms.
     #[arg(long, default_value_t = 20.0)]
     pub tmax: f64,
+    /// Derive the band from the display instead (as `bench --band`): render times whose
+    /// frames, handed over to the window, make every refresh of its monitor (`refresh:M`:
+    /// every M-th; 60 Hz where the monitor does not say), with the hand-over measured over
+    /// the first frames. --tmin and --tmax hold until then.
+    #[arg(long, value_name = "refresh[:M]")]
+    pub band: Option<crate::bench::RefreshBand>,
     /// Window width in pixels (default 1280; in playback, the recording's frame size).
     #[arg(long)]
     pub width: Option<u32>,
@@ -114,6 +121,8 @@ struct Plan {
     pixel_size: Option<u32>,
     present: PresentChoice,
     band: Band,
+    /// `--band refresh[:M]`: the multiple of the refresh interval to align the band to.
+    aligned: Option<u32>,
     clock: Option<crate::cli::ClockChoice>,
     sweep: bool,
     sweep_seconds: f32,
@@ -130,6 +139,9 @@ const DEFAULT_WINDOW: (u32, u32) = (1280, 720);
 impl Plan {
     fn new(args: &ViewArgs) -> Result<Self> {
         let band = Band::new(args.tmin, args.tmax)?;
+        if args.band.is_some() && args.playback.is_some() {
+            bail!("--band refresh sets a controller's band: it needs a live view, not --playback");
+        }
         if args.frames == Some(0) {
             bail!("--frames must be at least 1");
         }
@@ -195,6 +207,7 @@ impl Plan {
             pixel_size: args.pixel_size,
             present: args.present,
             band,
+            aligned: args.band.map(|b| b.multiple),
             clock: args.clock,
             sweep: args.sweep,
             sweep_seconds: args.sweep_seconds,
