@@ -57,6 +57,22 @@ enum Marker {
     Square,
     Triangle,
     Cross,
+    /// The hollow forms, for a method's runs with the temporal mode.
+    Ring,
+    HollowTriangle,
+    CircledCross,
+}
+
+impl Marker {
+    /// The hollow form of a method's marker.
+    fn hollow(self) -> Self {
+        match self {
+            Marker::Circle => Marker::Ring,
+            Marker::Triangle => Marker::HollowTriangle,
+            Marker::Cross => Marker::CircledCross,
+            other => other,
+        }
+    }
 }
 
 /// Draws `marker` at each of `points` (chart coordinates) on `chart`.
@@ -79,6 +95,16 @@ where
         Marker::Square => chart.draw_series(
             at.map(|p| EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], style)),
         ),
+        Marker::Ring => chart.draw_series(at.map(|p| Circle::new(p, 5, colour.stroke_width(2)))),
+        Marker::HollowTriangle => chart.draw_series(at.map(|p| {
+            EmptyElement::at(p)
+                + PathElement::new([(0, -7), (6, 4), (-6, 4), (0, -7)], colour.stroke_width(2))
+        })),
+        Marker::CircledCross => chart.draw_series(at.map(|p| {
+            EmptyElement::at(p)
+                + Cross::new((0, 0), 4, colour.stroke_width(2))
+                + Circle::new((0, 0), 7, colour.stroke_width(1))
+        })),
     }
     .map_err(plot_err)?;
     Ok(())
@@ -105,6 +131,14 @@ where
             Marker::Triangle => area.draw(&TriangleMarker::new((x, y), 6, style)),
             Marker::Cross => area.draw(&Cross::new((x, y), 5, colour.stroke_width(2))),
             Marker::Square => area.draw(&Rectangle::new([(x - 4, y - 4), (x + 4, y + 4)], style)),
+            Marker::Ring => area.draw(&Circle::new((x, y), 5, colour.stroke_width(2))),
+            Marker::HollowTriangle => area.draw(&PathElement::new(
+                [(x, y - 7), (x + 6, y + 4), (x - 6, y + 4), (x, y - 7)],
+                colour.stroke_width(2),
+            )),
+            Marker::CircledCross => area
+                .draw(&Cross::new((x, y), 4, colour.stroke_width(2)))
+                .and_then(|_| area.draw(&Circle::new((x, y), 7, colour.stroke_width(1)))),
         }
         .map_err(plot_err)?;
         area.draw(&Text::new(label.clone(), (x + 16, y - 7), text.clone()))
@@ -357,12 +391,16 @@ const BAND_COLOURS: [RGBColor; 4] = [
 /// The colour of the fixed qualities (the same for every band: no control).
 const FIXED_COLOUR: RGBColor = RGBColor(110, 110, 110);
 /// Markers of the controllers, in order of appearance.
-const METHOD_MARKERS: [Marker; 4] = [
-    Marker::Circle,
-    Marker::Triangle,
-    Marker::Cross,
-    Marker::Square,
-];
+/// The controllers' markers (squares are the fixed qualities').
+const METHOD_MARKERS: [Marker; 3] = [Marker::Circle, Marker::Triangle, Marker::Cross];
+
+/// A run's method without its temporal mode, and whether it ran with it.
+fn method_of(name: &str) -> (&str, bool) {
+    match name.strip_suffix(" +temporal") {
+        Some(base) => (base, true),
+        None => (name, false),
+    }
+}
 
 /// Whether a run is a fixed quality (the paper's baseline, the best fixed, or any other).
 fn is_fixed(name: &str) -> bool {
@@ -438,29 +476,31 @@ where
     }
     let mut bands: Vec<[f64; 2]> = Vec::new();
     let mut methods: Vec<&str> = Vec::new();
+    let mut any_temporal = false;
     for p in points.iter().filter(|p| !is_fixed(&p.name)) {
         if !bands.contains(&p.band_ms) {
             bands.push(p.band_ms);
         }
-        if !methods.contains(&p.name.as_str()) {
-            methods.push(&p.name);
+        let (base, temporal) = method_of(&p.name);
+        any_temporal |= temporal;
+        if !methods.contains(&base) {
+            methods.push(base);
         }
     }
-    for (b, band) in bands.iter().enumerate() {
-        for (m, method) in methods.iter().enumerate() {
-            let at: Vec<(f64, f64)> = points
-                .iter()
-                .filter(|p| p.band_ms == *band && p.name == *method)
-                .map(|p| (p.displayed_fps, p.jod))
-                .collect();
-            let marker = METHOD_MARKERS[m % METHOD_MARKERS.len()];
-            draw_markers(
-                &mut chart,
-                marker,
-                BAND_COLOURS[b % BAND_COLOURS.len()],
-                &at,
-            )?;
-        }
+    for p in points.iter().filter(|p| !is_fixed(&p.name)) {
+        let (base, temporal) = method_of(&p.name);
+        let b = bands
+            .iter()
+            .position(|band| *band == p.band_ms)
+            .unwrap_or(0);
+        let m = methods.iter().position(|name| *name == base).unwrap_or(0);
+        let marker = METHOD_MARKERS[m % METHOD_MARKERS.len()];
+        draw_markers(
+            &mut chart,
+            if temporal { marker.hollow() } else { marker },
+            BAND_COLOURS[b % BAND_COLOURS.len()],
+            &[(p.displayed_fps, p.jod)],
+        )?;
     }
     for (b, band) in bands.iter().enumerate() {
         entries.push((
@@ -474,6 +514,13 @@ where
             method.to_string(),
             BLACK,
             METHOD_MARKERS[m % METHOD_MARKERS.len()],
+        ));
+    }
+    if any_temporal {
+        entries.push((
+            "hollow: with the temporal mode".to_string(),
+            BLACK,
+            Marker::Ring,
         ));
     }
     let (_, legend) = legend.split_vertically(50);

@@ -1,4 +1,4 @@
-//! `view --band refresh[:M]`: the band derived from the window's display, as `bench --band`
+//! `view --band refresh[:M]` (the view's default band): the band derived from the window's display, as `bench --band`
 //! derives it from the display model. The refresh rate is the monitor's (60 Hz where it does
 //! not say); the hand-over is what giving a frame to the window costs (the tone map and
 //! upload of the CPU backend, the GPU's hand-over of its image), measured over the first

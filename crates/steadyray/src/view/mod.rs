@@ -40,16 +40,18 @@ pub struct ViewArgs {
     /// `perceptual:model=motion.json`. The HUD switches it live.
     #[arg(long, default_value = "predictive")]
     pub controller: String,
-    /// Lower edge of the frame-time band, ms.
-    #[arg(long, default_value_t = 15.0)]
-    pub tmin: f64,
-    /// Upper edge of the frame-time band, ms.
-    #[arg(long, default_value_t = 20.0)]
-    pub tmax: f64,
-    /// Derive the band from the display instead (as `bench --band`): render times whose
-    /// frames, handed over to the window, make every refresh of its monitor (`refresh:M`:
-    /// every M-th; 60 Hz where the monitor does not say), with the hand-over measured over
-    /// the first frames. --tmin and --tmax hold until then.
+    /// Lower edge of a fixed frame-time band, ms (with --tmax; the other edge defaults to
+    /// 15 or 20, the paper's band). Without either the band follows the display (--band).
+    #[arg(long, conflicts_with = "band")]
+    pub tmin: Option<f64>,
+    /// Upper edge of a fixed frame-time band, ms.
+    #[arg(long, conflicts_with = "band")]
+    pub tmax: Option<f64>,
+    /// The band from the display (the default without --tmin/--tmax; docs/subjective.md
+    /// says why): render times whose frames, handed over to the window, make every refresh
+    /// of its monitor (`refresh:M`: every M-th; 60 Hz where the monitor does not say), with
+    /// the hand-over measured over the first frames; the paper's [15, 20] ms holds until
+    /// then.
     #[arg(long, value_name = "refresh[:M]")]
     pub band: Option<crate::bench::RefreshBand>,
     /// Window width in pixels (default 1280; in playback, the recording's frame size).
@@ -133,15 +135,28 @@ struct Plan {
     screenshot: Option<PathBuf>,
 }
 
+/// The paper's band, ms: the window's band until the display's is measured, and the fixed
+/// band's missing edge.
+const PAPER_BAND_MS: (f64, f64) = (15.0, 20.0);
+
 /// Default window size of the live view.
 const DEFAULT_WINDOW: (u32, u32) = (1280, 720);
 
 impl Plan {
     fn new(args: &ViewArgs) -> Result<Self> {
-        let band = Band::new(args.tmin, args.tmax)?;
+        let fixed_band = args.tmin.is_some() || args.tmax.is_some();
+        let band = Band::new(
+            args.tmin.unwrap_or(PAPER_BAND_MS.0),
+            args.tmax.unwrap_or(PAPER_BAND_MS.1),
+        )?;
         if args.band.is_some() && args.playback.is_some() {
             bail!("--band refresh sets a controller's band: it needs a live view, not --playback");
         }
+        let aligned = match (args.band, fixed_band, &args.playback) {
+            (Some(b), _, _) => Some(b.multiple),
+            (None, false, None) => Some(1),
+            _ => None,
+        };
         if args.frames == Some(0) {
             bail!("--frames must be at least 1");
         }
@@ -207,7 +222,7 @@ impl Plan {
             pixel_size: args.pixel_size,
             present: args.present,
             band,
-            aligned: args.band.map(|b| b.multiple),
+            aligned,
             clock: args.clock,
             sweep: args.sweep,
             sweep_seconds: args.sweep_seconds,
@@ -282,8 +297,9 @@ mod tests {
 
     #[test]
     fn bad_arguments_fail_before_a_window_opens() {
-        let cases: [(&[&str], &str); 8] = [
+        let cases: [(&[&str], &str); 9] = [
             (&["--tmin", "20", "--tmax", "10"], "Tmin"),
+            (&["--tmin", "10", "--band", "refresh"], "--band"),
             (&["--controller", "fastest"], "fastest"),
             (&["--controller", "step:bogus=1"], "bogus"),
             (&["--frames", "0"], "--frames"),
@@ -306,6 +322,15 @@ mod tests {
         assert_eq!(run_guarded(|| 7), Ok(7));
         let err = run_guarded(|| -> u32 { panic!("connection reset") }).unwrap_err();
         assert!(err.contains("connection reset"), "{err}");
+    }
+
+    #[test]
+    fn the_band_follows_the_display_unless_given() {
+        assert_eq!(plan(&[]).unwrap().aligned, Some(1));
+        assert_eq!(plan(&["--band", "refresh:2"]).unwrap().aligned, Some(2));
+        let fixed = plan(&["--tmax", "30"]).unwrap();
+        assert_eq!(fixed.aligned, None);
+        assert_eq!((fixed.band.tmin_ms(), fixed.band.tmax_ms()), (15.0, 30.0));
     }
 
     #[test]
