@@ -177,11 +177,13 @@ impl Wide {
                 if mask != 0 {
                     let mut order = [(0.0f32, 0u32); WIDTH];
                     let mut n = 0;
-                    for (lane, (&d, &child)) in t_near.iter().zip(&node.child).enumerate() {
-                        if mask & (1 << lane) != 0 {
-                            order[n] = (d, child);
-                            n += 1;
-                        }
+                    // The hit lanes in ascending order, one step per hit lane.
+                    let mut lanes = mask;
+                    while lanes != 0 {
+                        let lane = lanes.trailing_zeros() as usize;
+                        lanes &= lanes - 1;
+                        order[n] = (t_near[lane], node.child[lane]);
+                        n += 1;
                     }
                     // Nearest last: insertion sort by descending entry distance.
                     for i in 1..n {
