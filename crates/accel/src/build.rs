@@ -106,9 +106,10 @@ impl Layout<WIDTH> for WideOut<'_> {
     }
 }
 
-/// The GPU's 4-wide tree being laid out; its leaves are triangle ranges in leaf order.
-struct GpuOut {
-    nodes: Vec<GpuNode>,
+/// A GPU 4-wide tree being laid out; its leaves are ranges in leaf order (triangles of a
+/// mesh's tree, objects of the top level).
+pub(crate) struct GpuOut {
+    pub nodes: Vec<GpuNode>,
 }
 
 impl Layout<GPU_WIDTH> for GpuOut {

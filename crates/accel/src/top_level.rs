@@ -16,9 +16,9 @@
 #[cfg(target_arch = "x86_64")]
 use crate::box_test::Avx;
 use crate::box_test::{BoxRay, BoxTest, Portable};
-use crate::build::{BvhError, Layout, lay_out};
+use crate::build::{BvhError, GpuOut, Layout, lay_out};
 use crate::gpu_node::{GPU_EMPTY, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
-use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode};
+use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, push_all_but_nearest};
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -151,7 +151,7 @@ impl TopLevel {
                 top.wide = out.nodes;
             }
             TopLayout::Gpu => {
-                let mut out = GpuTop { nodes: Vec::new() };
+                let mut out = GpuOut { nodes: Vec::new() };
                 top.gpu_pending = lay_out(&bvh2, &mut out);
                 top.gpu = out.nodes;
             }
@@ -327,19 +327,7 @@ impl TopLevel {
                             n += 1;
                         }
                     }
-                    // Nearest last: insertion sort by descending entry distance.
-                    for i in 1..n {
-                        let mut j = i;
-                        while j > 0 && order[j - 1].0 < order[j].0 {
-                            order.swap(j - 1, j);
-                            j -= 1;
-                        }
-                    }
-                    for &(d, c) in &order[..n - 1] {
-                        stack[sp].write((c, d));
-                        sp += 1;
-                    }
-                    cur = order[n - 1].1;
+                    cur = push_all_but_nearest(&mut order[..n], &mut stack, &mut sp);
                     continue;
                 }
             } else {
@@ -507,28 +495,6 @@ impl Layout<WIDTH> for WideTop {
 
     fn leaf(&mut self, first: u32, count: u32) -> u32 {
         wide_leaf(first, count)
-    }
-}
-
-/// The GPU's 4-wide top level being laid out.
-struct GpuTop {
-    nodes: Vec<GpuNode>,
-}
-
-impl Layout<GPU_WIDTH> for GpuTop {
-    type Node = GpuNode;
-    const EMPTY: GpuNode = GpuNode::EMPTY;
-
-    fn nodes(&mut self) -> &mut Vec<GpuNode> {
-        &mut self.nodes
-    }
-
-    fn set_lane(node: &mut GpuNode, lane: usize, min: [f32; 3], max: [f32; 3], child: u32) {
-        node.set(lane, min, max, child);
-    }
-
-    fn leaf(&mut self, first: u32, count: u32) -> u32 {
-        GpuNode::leaf(first, count)
     }
 }
 

@@ -57,6 +57,31 @@ impl WideNode {
 }
 
 /// Which compiled form of the traversal an x86-64 CPU runs.
+/// The children a ray entered, as (entry distance, child): pushes all but the nearest on
+/// the stack of pending (child, distance) pairs, the farthest deepest, and returns the
+/// nearest, to descend into. `hits` is not empty.
+#[inline(always)]
+pub(crate) fn push_all_but_nearest(
+    hits: &mut [(f32, u32)],
+    stack: &mut [MaybeUninit<(u32, f32)>; STACK_SIZE],
+    sp: &mut usize,
+) -> u32 {
+    // Nearest last: insertion sort by descending entry distance.
+    for i in 1..hits.len() {
+        let mut j = i;
+        while j > 0 && hits[j - 1].0 < hits[j].0 {
+            hits.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let last = hits.len() - 1;
+    for &(d, c) in &hits[..last] {
+        stack[*sp].write((c, d));
+        *sp += 1;
+    }
+    hits[last].1
+}
+
 #[cfg(target_arch = "x86_64")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum X86Level {
@@ -185,19 +210,7 @@ impl Wide {
                         order[n] = (t_near[lane], node.child[lane]);
                         n += 1;
                     }
-                    // Nearest last: insertion sort by descending entry distance.
-                    for i in 1..n {
-                        let mut j = i;
-                        while j > 0 && order[j - 1].0 < order[j].0 {
-                            order.swap(j - 1, j);
-                            j -= 1;
-                        }
-                    }
-                    for &(d, c) in &order[..n - 1] {
-                        stack[sp].write((c, d));
-                        sp += 1;
-                    }
-                    cur = order[n - 1].1;
+                    cur = push_all_but_nearest(&mut order[..n], &mut stack, &mut sp);
                     continue;
                 }
             } else {
