@@ -156,7 +156,7 @@ impl World {
             return Ok(0.0);
         }
         let start = Instant::now();
-        self.layout.leaves_and_objects_at(
+        self.layout.leaves_at(
             &self.scene,
             time_s,
             &mut self.leaves,

@@ -181,9 +181,15 @@ pub(crate) struct GpuWorld {
     top: TopLevel,
     /// The time the frame was placed at; `None` before the first placement.
     time_s: Option<f64>,
+    /// Scratch of each placement: the frame's leaves, boxes, surface ids and objects (as
+    /// `SceneLayout::leaves_at` gives them), each leaf's index among the shapes or
+    /// instances, and the instances' surface ids.
     leaves: Vec<Leaf>,
     boxes: Vec<Bounds>,
     leaf_ids: Vec<u32>,
+    leaf_objects: Vec<u32>,
+    leaf_index: Vec<u32>,
+    instance_ids: Vec<u32>,
     /// The planes, then the frame's spheres and quads.
     pub(crate) shapes: Vec<GpuShape>,
     /// The temporal mode's surface ids of `shapes`, then of `instances`.
@@ -204,6 +210,9 @@ impl GpuWorld {
             leaves: Vec::new(),
             boxes: Vec::new(),
             leaf_ids: Vec::new(),
+            leaf_objects: Vec::new(),
+            leaf_index: Vec::new(),
+            instance_ids: Vec::new(),
             shapes: Vec::new(),
             surface_ids: Vec::new(),
             top_leaves: Vec::new(),
@@ -239,6 +248,7 @@ impl GpuWorld {
             &mut self.leaves,
             &mut self.boxes,
             &mut self.leaf_ids,
+            &mut self.leaf_objects,
         );
         self.top.update(&self.boxes).map_err(top_error)?;
         self.shapes.clear();
@@ -246,12 +256,12 @@ impl GpuWorld {
         self.surface_ids.clear();
         self.surface_ids
             .extend(self.layout.planes.iter().map(|p| p.surface));
-        let mut instance_ids = Vec::new();
+        self.instance_ids.clear();
         self.instances.clear();
         // Each leaf as a shape or instance, by its index (its key).
-        let mut index = Vec::with_capacity(self.leaves.len());
+        self.leaf_index.clear();
         for (leaf, &id) in self.leaves.iter().zip(&self.leaf_ids) {
-            index.push(match *leaf {
+            self.leaf_index.push(match *leaf {
                 Leaf::Sphere {
                     center,
                     radius,
@@ -289,16 +299,16 @@ impl GpuWorld {
                         baked: u32::from(inst.to_mesh.is_none()),
                         ..Default::default()
                     });
-                    instance_ids.push(id);
+                    self.instance_ids.push(id);
                     TOP_INSTANCE | (self.instances.len() as u32 - 1)
                 }
             });
         }
-        self.surface_ids.extend(instance_ids);
+        self.surface_ids.extend_from_slice(&self.instance_ids);
         self.top_leaves.clear();
         self.top_leaves
             .extend(self.top.leaf_order().iter().map(|&key| GpuTopLeaf {
-                index: index[key as usize],
+                index: self.leaf_index[key as usize],
                 key,
             }));
         self.time_s = Some(time_s);

@@ -12,6 +12,8 @@ pub mod settings;
 pub mod stats;
 pub mod surface_motion;
 pub mod temporal;
+#[cfg(test)]
+mod test_scene;
 pub mod tonemap;
 pub mod two_level;
 

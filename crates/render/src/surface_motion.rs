@@ -133,21 +133,9 @@ pub fn surface_moves(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_scene::scene_of as scene;
     use glam::Vec3;
-    use steadyray_scene::{Material, Motion, MotionKey, Object, Shape};
-
-    fn scene(objects: Vec<Object>) -> Scene {
-        let mut s = steadyray_scene::builtin("corridor").unwrap();
-        s.materials = vec![(
-            "m".into(),
-            Material::Diffuse {
-                albedo: Vec3::ONE,
-                checker: None,
-            },
-        )];
-        s.objects = objects;
-        s
-    }
+    use steadyray_scene::{Motion, MotionKey, Object, Shape};
 
     fn sliding(shape: Shape, visible: Option<Vec<[f64; 2]>>) -> Object {
         Object {

@@ -230,23 +230,11 @@ impl SceneLayout {
     }
 
     /// The top level's leaves at scene time `t_s` (objects in order, those that do not exist
-    /// then left out; planes never), each with its world box and its surface id, into
-    /// `leaves`, `boxes` and `surfaces` (cleared first). `scene` must be the scene this
-    /// layout was made from.
+    /// then left out; planes never), each with its world box, its surface id and the index
+    /// in `scene.objects` of its object (what a hit belongs to, to follow its motion), into
+    /// `leaves`, `boxes`, `surfaces` and `objects` (cleared first). `scene` must be the scene
+    /// this layout was made from.
     pub fn leaves_at(
-        &self,
-        scene: &Scene,
-        t_s: f64,
-        leaves: &mut Vec<Leaf>,
-        boxes: &mut Vec<Bounds>,
-        surfaces: &mut Vec<u32>,
-    ) {
-        self.leaves_and_objects_at(scene, t_s, leaves, boxes, surfaces, &mut Vec::new());
-    }
-
-    /// [`SceneLayout::leaves_at`], and in `objects` (cleared first) the index in
-    /// `scene.objects` of each leaf's object: what a hit belongs to, to follow its motion.
-    pub fn leaves_and_objects_at(
         &self,
         scene: &Scene,
         t_s: f64,
@@ -389,20 +377,8 @@ fn invertible(m: &DMat3) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use steadyray_scene::{Material, Motion, MotionKey, Object, Transform, TriangleMesh};
-
-    fn scene(objects: Vec<Object>) -> Scene {
-        let mut s = steadyray_scene::builtin("corridor").unwrap();
-        s.materials = vec![(
-            "m".into(),
-            Material::Diffuse {
-                albedo: Vec3::ONE,
-                checker: None,
-            },
-        )];
-        s.objects = objects;
-        s
-    }
+    use crate::test_scene::scene_of as scene;
+    use steadyray_scene::{Motion, MotionKey, Object, Transform, TriangleMesh};
 
     fn triangle() -> TriangleMesh {
         TriangleMesh {
@@ -442,7 +418,7 @@ mod tests {
         assert_eq!(layout.meshes[1].corners[0][1], Vec3::X);
 
         let (mut leaves, mut boxes, mut ids) = (Vec::new(), Vec::new(), Vec::new());
-        layout.leaves_at(&s, 0.5, &mut leaves, &mut boxes, &mut ids);
+        layout.leaves_at(&s, 0.5, &mut leaves, &mut boxes, &mut ids, &mut Vec::new());
         assert_eq!(ids, [0, 1]);
         assert_eq!(leaves.len(), 2);
         let (Leaf::Instance(a), Leaf::Instance(b)) = (leaves[0], leaves[1]) else {
@@ -506,13 +482,13 @@ mod tests {
         let layout = SceneLayout::new(&s).unwrap();
         assert_eq!(layout.planes.len(), 1);
         let (mut leaves, mut boxes, mut ids) = (Vec::new(), Vec::new(), Vec::new());
-        layout.leaves_at(&s, 0.0, &mut leaves, &mut boxes, &mut ids);
+        layout.leaves_at(&s, 0.0, &mut leaves, &mut boxes, &mut ids, &mut Vec::new());
         assert_eq!(leaves.len(), 1);
         assert!(matches!(leaves[0], Leaf::Sphere { radius: 0.5, .. }));
         // Surface ids stay with their objects whatever exists: later 0, floor 1, ball 2.
         assert_eq!((ids.as_slice(), layout.planes[0].surface), (&[2][..], 1));
         assert_eq!(layout.surface_count(), 3);
-        layout.leaves_at(&s, 1.5, &mut leaves, &mut boxes, &mut ids);
+        layout.leaves_at(&s, 1.5, &mut leaves, &mut boxes, &mut ids, &mut Vec::new());
         assert_eq!(ids, [0, 2]);
         assert!(matches!(leaves[0], Leaf::Quad { .. }));
         assert!(matches!(leaves[1], Leaf::Sphere { .. }));
