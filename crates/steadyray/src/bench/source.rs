@@ -9,7 +9,7 @@ use steadyray_control::{FrameReport, Quality};
 use steadyray_motion::{MotionTracker, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
 use steadyray_render::{Image, RenderSettings, Renderer, TemporalSettings};
-use steadyray_scene::Scene;
+use steadyray_scene::{Camera, Scene};
 
 /// One rendered (or simulated) frame as the experiment sees it.
 pub struct Measured {
@@ -110,30 +110,16 @@ impl FrameSource for RendererSource {
             }
             PathPoint::Time { t_s, .. } => (self.scene.camera_at_time(t_s), t_s),
         };
-        let (width, height) = scaled_size(self.width, self.height, q.scale);
-        let settings = RenderSettings {
-            width,
-            height,
-            spp: q.spp,
-            max_depth: q.depth,
-        };
-        let stats = self.renderer.render(&camera, time_s, &settings)?;
-        let speed = self.motion.next(Shot::at(camera, time_s))?;
-        let f = camera.forward;
-        Ok(Measured {
-            report: FrameReport {
-                tp_ms: stats.render_ms,
-                rays_per_depth: stats.rays.per_depth,
-                shadow_rays: stats.rays.shadow,
-                pixels: settings.pixels(),
-                quality: q,
-                speed_deg_s: speed.mean_deg_s,
-            },
-            wall_ms: stats.wall_ms,
-            accel_ms: stats.accel_ms,
-            angle: (-f.x).atan2(-f.z).rem_euclid(std::f32::consts::TAU),
-            speed,
-        })
+        let mut measured = render_measured(
+            self.renderer.as_mut(),
+            &camera,
+            time_s,
+            (self.width, self.height),
+            q,
+        )?;
+        measured.speed = self.motion.next(Shot::at(camera, time_s))?;
+        measured.report.speed_deg_s = measured.speed.mean_deg_s;
+        Ok(measured)
     }
 
     fn hand_over(&mut self) -> Result<HandOver> {
@@ -156,12 +142,52 @@ impl FrameSource for RendererSource {
     }
 
     fn set_temporal(&mut self, on: bool) -> Result<()> {
-        let history = TemporalSettings {
-            width: self.width,
-            height: self.height,
-        };
-        Ok(self.renderer.set_temporal(on.then_some(history))?)
+        set_history(self.renderer.as_mut(), (self.width, self.height), on)
     }
+}
+
+/// Renders `camera` at scene time `time_s` at quality `q` (the `full` size scaled by
+/// `q.scale`) and measures it: no motion on screen yet (the caller measures it).
+pub fn render_measured(
+    renderer: &mut dyn Renderer,
+    camera: &Camera,
+    time_s: f64,
+    (width, height): (u32, u32),
+    q: Quality,
+) -> Result<Measured> {
+    let (width, height) = scaled_size(width, height, q.scale);
+    let settings = RenderSettings {
+        width,
+        height,
+        spp: q.spp,
+        max_depth: q.depth,
+    };
+    let stats = renderer.render(camera, time_s, &settings)?;
+    let f = camera.forward;
+    Ok(Measured {
+        report: FrameReport {
+            tp_ms: stats.render_ms,
+            rays_per_depth: stats.rays.per_depth,
+            shadow_rays: stats.rays.shadow,
+            pixels: settings.pixels(),
+            quality: q,
+            speed_deg_s: 0.0,
+        },
+        wall_ms: stats.wall_ms,
+        accel_ms: stats.accel_ms,
+        angle: (-f.x).atan2(-f.z).rem_euclid(std::f32::consts::TAU),
+        speed: ScreenSpeed::default(),
+    })
+}
+
+/// Turns the temporal mode of `renderer` on (a new history of `full` pixels) or off.
+pub fn set_history(
+    renderer: &mut dyn Renderer,
+    (width, height): (u32, u32),
+    on: bool,
+) -> Result<()> {
+    let history = TemporalSettings { width, height };
+    Ok(renderer.set_temporal(on.then_some(history))?)
 }
 
 /// Frames from the simulated renderer: a cost model driven by the corridor-shaped load.

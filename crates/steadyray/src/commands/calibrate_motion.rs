@@ -18,7 +18,9 @@
 use crate::bench::displayed::{TimedReferences, measure, screen_samples};
 use crate::bench::machine::git_revision;
 use crate::bench::real_clock::DisplayRun;
-use crate::bench::source::{FrameSource, HandOver, Measured, PathPoint, scaled_size};
+use crate::bench::source::{
+    FrameSource, HandOver, Measured, PathPoint, render_measured, set_history,
+};
 use crate::bench::video::{self, ReferenceKey, VideoIndex, VideoRun};
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
@@ -28,12 +30,12 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 use steadyray_control::ladder::Ladder;
-use steadyray_control::{FrameReport, Metric, MotionModel, Quality};
+use steadyray_control::{Metric, MotionModel, Quality};
 use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, ViewingSetup};
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Image, RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{Image, Renderer};
 use steadyray_scene::{Camera, Scene};
 
 /// What to measure.
@@ -198,28 +200,15 @@ impl FrameSource for StimulusSource<'_> {
             PathPoint::Frame { k, n } => self.duration_s * f64::from(k) / f64::from(n.max(1)),
         };
         let camera = self.turn.camera(t_s);
-        let (width, height) = scaled_size(self.width, self.height, q.scale);
-        let settings = RenderSettings {
-            width,
-            height,
-            spp: q.spp,
-            max_depth: q.depth,
-        };
-        let stats = self.renderer.render(&camera, self.world_s, &settings)?;
-        Ok(Measured {
-            report: FrameReport {
-                tp_ms: stats.render_ms,
-                rays_per_depth: stats.rays.per_depth,
-                shadow_rays: stats.rays.shadow,
-                pixels: settings.pixels(),
-                quality: q,
-                speed_deg_s: 0.0,
-            },
-            wall_ms: stats.wall_ms,
-            accel_ms: stats.accel_ms,
-            angle: 0.0,
-            speed: ScreenSpeed::default(),
-        })
+        // The world stands still at the view's time; the stimulus's motion is the camera's
+        // turn, known, not measured.
+        render_measured(
+            &mut *self.renderer,
+            &camera,
+            self.world_s,
+            (self.width, self.height),
+            q,
+        )
     }
 
     fn hand_over(&mut self) -> Result<HandOver> {
@@ -239,11 +228,7 @@ impl FrameSource for StimulusSource<'_> {
     }
 
     fn set_temporal(&mut self, on: bool) -> Result<()> {
-        let history = TemporalSettings {
-            width: self.width,
-            height: self.height,
-        };
-        Ok(self.renderer.set_temporal(on.then_some(history))?)
+        set_history(&mut *self.renderer, (self.width, self.height), on)
     }
 
     fn last_image(&mut self) -> Result<Option<Image>> {
