@@ -9,32 +9,6 @@ use glam::{DAffine3, DVec3};
 use steadyray_render::Renderer;
 use steadyray_scene::{Motion, MotionKey, Object, Scene, Shape, Transform, TriangleMesh, Vec3};
 
-/// A closed box mesh from `lo` to `hi`, outward-facing.
-fn cuboid(lo: Vec3, hi: Vec3) -> TriangleMesh {
-    let corner = |i: u32| {
-        Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    };
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    TriangleMesh {
-        positions: (0..8).map(corner).collect(),
-        triangles: quads
-            .iter()
-            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-            .collect(),
-    }
-}
-
 /// A floor, a light, and `extra` objects, seen from (0, 1.5, 2) looking at (0, 0.5, -3).
 fn stage(extra: Vec<Object>) -> Scene {
     let mut s = scene(
@@ -79,7 +53,7 @@ fn difference(a: &steadyray_render::Image, b: &steadyray_render::Image) -> (u8, 
 
 #[test]
 fn instances_look_like_the_same_copies_placed_vertex_by_vertex() {
-    let mesh = cuboid(Vec3::new(-0.5, 0.0, -0.5), Vec3::new(0.5, 0.8, 0.5));
+    let mesh = TriangleMesh::cuboid(Vec3::new(-0.5, 0.0, -0.5), Vec3::new(0.5, 0.8, 0.5));
     let placement = Transform {
         translate: Vec3::new(0.0, 0.0, -3.0),
         scale: Vec3::new(1.2, 1.0, 0.8),

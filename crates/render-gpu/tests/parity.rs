@@ -187,32 +187,6 @@ fn icosphere(center: Vec3, radius: f32) -> TriangleMesh {
     }
 }
 
-/// A box mesh (12 triangles) from `lo` to `hi`.
-fn cuboid(lo: Vec3, hi: Vec3) -> TriangleMesh {
-    let corner = |i: u32| {
-        Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    };
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    TriangleMesh {
-        positions: (0..8).map(corner).collect(),
-        triangles: quads
-            .iter()
-            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-            .collect(),
-    }
-}
-
 fn mesh_scene(extra: Vec<Object>) -> Scene {
     let mut objects = vec![
         Object {
@@ -236,7 +210,7 @@ fn mesh_scene(extra: Vec<Object>) -> Scene {
         Object {
             name: "block".into(),
             shape: Shape::mesh(
-                cuboid(Vec3::new(0.4, 0.0, -5.0), Vec3::new(1.4, 1.2, -4.2)),
+                TriangleMesh::cuboid(Vec3::new(0.4, 0.0, -5.0), Vec3::new(1.4, 1.2, -4.2)),
                 Transform::IDENTITY,
             ),
             material: 2,
@@ -431,7 +405,7 @@ fn moving_world() {
         moving(
             "swarm",
             Shape::Mesh {
-                mesh: cuboid(Vec3::splat(-0.3), Vec3::splat(0.3)),
+                mesh: TriangleMesh::cuboid(Vec3::splat(-0.3), Vec3::splat(0.3)),
                 placement: Transform {
                     translate: Vec3::new(0.2, 1.6, -4.6),
                     ..Transform::IDENTITY

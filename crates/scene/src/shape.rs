@@ -67,6 +67,32 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
+    /// A closed axis-aligned box from `lo` to `hi`: 8 corners, 12 outward-facing triangles.
+    pub fn cuboid(lo: Vec3, hi: Vec3) -> Self {
+        let corner = |i: u32| {
+            Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        };
+        let quads = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        Self {
+            positions: (0..8).map(corner).collect(),
+            triangles: quads
+                .iter()
+                .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+                .collect(),
+        }
+    }
+
     /// The three corners of triangle `i`.
     pub fn triangle(&self, i: usize) -> [Vec3; 3] {
         let [a, b, c] = self.triangles[i];
