@@ -170,27 +170,25 @@ fn no_history_survives_a_disocclusion() {
     }
 }
 
+/// A motion sliding along +x at `m_per_s` for 10 s from the placement (time 0).
+fn slide_x(m_per_s: f32) -> Motion {
+    let key = |t: f64, x: f32| MotionKey {
+        t,
+        translate: Some(Vec3::new(x, 0.0, 0.0)),
+        rotate_y_deg: None,
+        scale: None,
+    };
+    Motion {
+        keys: vec![key(0.0, 0.0), key(10.0, 10.0 * m_per_s)],
+        ..Default::default()
+    }
+}
+
 /// The wall and the ball of [`wall_and_ball`], the ball sliding +x at 1 m/s (its model
 /// centre at x = 0, time 0).
 fn sliding_ball() -> Scene {
     let mut scene = wall_and_ball();
-    scene.objects[1].motion = Some(Motion {
-        keys: vec![
-            MotionKey {
-                t: 0.0,
-                translate: Some(Vec3::ZERO),
-                rotate_y_deg: None,
-                scale: None,
-            },
-            MotionKey {
-                t: 10.0,
-                translate: Some(Vec3::new(10.0, 0.0, 0.0)),
-                rotate_y_deg: None,
-                scale: None,
-            },
-        ],
-        ..Default::default()
-    });
+    scene.objects[1].motion = Some(slide_x(1.0));
     scene
 }
 
@@ -269,23 +267,7 @@ fn sliding_card() -> Scene {
         1.0,
         Vec3::ZERO,
     );
-    scene.objects[1].motion = Some(Motion {
-        keys: vec![
-            MotionKey {
-                t: 0.0,
-                translate: Some(Vec3::ZERO),
-                rotate_y_deg: None,
-                scale: None,
-            },
-            MotionKey {
-                t: 10.0,
-                translate: Some(Vec3::new(30.0, 0.0, 0.0)),
-                rotate_y_deg: None,
-                scale: None,
-            },
-        ],
-        ..Default::default()
-    });
+    scene.objects[1].motion = Some(slide_x(3.0));
     scene
 }
 
