@@ -7,7 +7,7 @@ mod resolve;
 pub(crate) use geometry::{Geometry, GeometrySink};
 
 use rayon::prelude::*;
-use resolve::{Axis, Inputs, Prepared};
+use resolve::{Axis, Inputs, Prepared, Preparing, Range, RowScratch, Seen};
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{HistoryClock, TemporalFrame};
 use steadyray_render::{Image, TemporalSettings};
@@ -25,12 +25,17 @@ pub(crate) struct History {
     pub moves: Vec<SurfaceMove>,
     /// What the resolve needs of each frame pixel, and of each history column and row.
     prepared: Vec<Prepared>,
+    ranges: Vec<Range>,
+    seen: Vec<Seen>,
     columns: Axis,
     rows: Axis,
+    /// The history's radiance and age per pixel, and the frame pixel of the previous frame
+    /// whose record is its geometry (`previous_geometry`).
     colour: Vec<[f32; 4]>,
-    geometry: Vec<Geometry>,
+    sources: Vec<u32>,
+    previous_geometry: Vec<Geometry>,
     next_colour: Vec<[f32; 4]>,
-    next_geometry: Vec<Geometry>,
+    next_sources: Vec<u32>,
     /// Whether a frame was accumulated since the mode was set.
     accumulated: bool,
 }
@@ -45,12 +50,15 @@ impl History {
             low_geometry: Vec::new(),
             moves: Vec::new(),
             prepared: Vec::new(),
+            ranges: Vec::new(),
+            seen: Vec::new(),
             columns: Axis::default(),
             rows: Axis::default(),
             colour: vec![[0.0; 4]; pixels],
-            geometry: vec![Geometry::default(); pixels],
+            sources: vec![0; pixels],
+            previous_geometry: Vec::new(),
             next_colour: vec![[0.0; 4]; pixels],
-            next_geometry: vec![Geometry::default(); pixels],
+            next_sources: vec![0; pixels],
             accumulated: false,
         }
     }
@@ -61,6 +69,8 @@ impl History {
         self.low.resize(pixels, [0.0; 3]);
         self.low_geometry.resize(pixels, Geometry::default());
         self.prepared.resize(pixels, Prepared::default());
+        self.ranges.resize(pixels, Range::default());
+        self.seen.resize(pixels, Seen::default());
     }
 
     /// Accumulates the rendered frame (`low_size`, camera frame `camera` for the history's
@@ -68,40 +78,51 @@ impl History {
     pub fn resolve(&mut self, camera: CameraFrame, frame: TemporalFrame, low_size: (u32, u32)) {
         let settings = self.clock.settings();
         let size = (settings.width, settings.height);
+        let preparing = Preparing {
+            camera: &camera,
+            frame: &frame,
+            size,
+            moves: &self.moves,
+            low: &self.low,
+            low_geometry: &self.low_geometry,
+            low_size,
+        };
+        let low_w = low_size.0 as usize;
         self.prepared
-            .par_iter_mut()
-            .zip(self.low.par_iter())
-            .zip(self.low_geometry.par_iter())
-            .with_min_len(1024)
-            .for_each(|((p, &colour), geometry)| {
-                *p = Inputs::prepare(&camera, &frame, size, &self.moves, colour, geometry);
+            .par_chunks_mut(low_w)
+            .zip(self.ranges.par_chunks_mut(low_w))
+            .zip(self.seen.par_chunks_mut(low_w))
+            .enumerate()
+            .for_each(|(y, ((prepared, ranges), seen))| {
+                preparing.row(y as u32, prepared, ranges, seen);
             });
         self.columns.fill(size.0, low_size.0, frame.anchor[0]);
         self.rows.fill(size.1, low_size.1, frame.anchor[1]);
         let inputs = Inputs {
             low: &self.low,
-            low_geometry: &self.low_geometry,
             prepared: &self.prepared,
+            ranges: &self.ranges,
+            seen: &self.seen,
             low_size,
             columns: &self.columns,
             rows: &self.rows,
             history: &self.colour,
-            geometry: &self.geometry,
+            sources: &self.sources,
+            geometry: &self.previous_geometry,
             size,
             frame,
         };
         let width = settings.width as usize;
         self.next_colour
             .par_chunks_mut(width)
-            .zip(self.next_geometry.par_chunks_mut(width))
+            .zip(self.next_sources.par_chunks_mut(width))
             .enumerate()
-            .for_each(|(y, (colours, geometries))| {
-                for (x, (colour, geometry)) in colours.iter_mut().zip(geometries).enumerate() {
-                    (*colour, *geometry) = inputs.resolve(x as u32, y as u32);
-                }
+            .for_each_init(RowScratch::default, |scratch, (y, (colours, sources))| {
+                inputs.resolve_row(y as u32, colours, sources, scratch);
             });
         std::mem::swap(&mut self.colour, &mut self.next_colour);
-        std::mem::swap(&mut self.geometry, &mut self.next_geometry);
+        std::mem::swap(&mut self.sources, &mut self.next_sources);
+        std::mem::swap(&mut self.previous_geometry, &mut self.low_geometry);
         self.accumulated = true;
     }
 

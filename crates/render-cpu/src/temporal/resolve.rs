@@ -2,15 +2,18 @@
 //! pixel, reproject the history by that sample's point, keep the taps whose surface is still
 //! seen around the pixel, filter them, clamp to the frame's local colour range and blend (a
 //! still camera keeps the history as it is). The arithmetic is `temporal.wgsl`'s operation
-//! for operation, so both round alike; what the GPU computes per history pixel the CPU
-//! computes once per frame pixel or once per row and column ([`Prepared`], [`Axis`]), which
-//! changes no result.
+//! for operation, so both round alike. What the GPU computes per history pixel the CPU
+//! computes once per frame pixel ([`Prepared`]: the sample's motion, its neighbourhood's
+//! colour range, its surface as the neighbourhood test reads it) or once per row and column
+//! ([`Axis`]), and it tests a tap against the neighbourhood's centre first; none of that
+//! changes a result.
 
 use super::geometry::Geometry;
+use glam::{BVec4A, Vec3, Vec4};
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{
     APPROX_FLAG, HISTORY_CAP, ID_MASK, MIRROR_FLAG, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP,
-    STILL_CAP, TemporalFrame, catmull_rom, covering, dot3, floor, landed_from, project,
+    STILL_CAP, TemporalFrame, catmull_rom, covering, dot3, floor, landed_from,
 };
 use steadyray_scene::camera::CameraFrame;
 
@@ -20,15 +23,67 @@ pub(crate) struct Prepared {
     /// Where its record's point was in the previous frame minus where it is now, in history
     /// pixels; None when either position is behind its camera or its surface is new.
     motion: Option<[f32; 2]>,
-    /// Its record's point and normal as they were in the previous frame (moved back with
-    /// its object), and the point's distance from the previous eye.
-    previous_q: [f32; 3],
-    previous_n: [f32; 3],
-    distance: f32,
-    /// Whether its surface existed in the previous frame.
-    existed: bool,
+    /// Its record's tag (whose flags set the pixel's cap).
+    tag: u32,
     /// Whether its colour is finite.
     finite: bool,
+}
+
+/// The per-channel range of the finite colours of a frame pixel's 3×3 neighbourhood (those
+/// inside the frame); (−∞, +∞) when none is finite, which leaves a finite colour as it is.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Range {
+    lo: [f32; 3],
+    hi: [f32; 3],
+}
+
+impl Default for Range {
+    fn default() -> Self {
+        Self {
+            lo: [f32::NEG_INFINITY; 3],
+            hi: [f32::INFINITY; 3],
+        }
+    }
+}
+
+/// A frame pixel's surface as the neighbourhood test reads it: its record's point and normal
+/// as they were in the previous frame (moved back with its object), the plane tolerance at
+/// its distance from the previous eye, and its id.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(32))]
+pub(crate) struct Seen {
+    q: [f32; 3],
+    tolerance: f32,
+    n: [f32; 3],
+    /// The surface id; with [`DIRECTION`] set for a direction (a miss: the id alone
+    /// decides), and [`NOT_SEEN`] for a surface that did not exist in the previous frame.
+    key: u32,
+}
+
+/// [`Seen::key`]'s bit for a record that is a direction.
+const DIRECTION: u32 = 0x4000_0000;
+/// [`Seen::key`] of a surface that matches no tap (no id has bit 31).
+const NOT_SEEN: u32 = 0x8000_0000;
+
+impl Seen {
+    /// Whether the history's surface `old` is this one as it was in the previous frame: the
+    /// same surface id and, for a point, within the tolerance of its tangent plane and
+    /// facing alike.
+    #[inline]
+    fn sees(&self, old: &Geometry) -> bool {
+        if self.key & !DIRECTION != old.tag & ID_MASK {
+            return false;
+        }
+        if self.key & DIRECTION != 0 {
+            return true;
+        }
+        let off = [
+            old.q[0] - self.q[0],
+            old.q[1] - self.q[1],
+            old.q[2] - self.q[2],
+        ];
+        dot3(off, self.n).abs() <= self.tolerance && dot3(self.n, old.n) >= NORMAL_COS
+    }
 }
 
 /// For each history column (or row): the frame column covering its centre, and the frame
@@ -51,18 +106,34 @@ impl Axis {
     }
 }
 
+/// What [`Prepared::row`] reads besides the frame.
+pub(crate) struct Preparing<'a> {
+    pub camera: &'a CameraFrame,
+    pub frame: &'a TemporalFrame,
+    /// The history's size.
+    pub size: (u32, u32),
+    pub moves: &'a [SurfaceMove],
+    /// The frame: `low_size` pixels of radiance and geometry.
+    pub low: &'a [[f32; 3]],
+    pub low_geometry: &'a [Geometry],
+    pub low_size: (u32, u32),
+}
+
 /// Everything the resolve of one frame reads.
 pub(crate) struct Inputs<'a> {
     /// The frame as rendered: `low_size` pixels of radiance and geometry, and what
-    /// [`Inputs::prepare`] made of them.
+    /// [`Preparing::row`] made of them.
     pub low: &'a [[f32; 3]],
-    pub low_geometry: &'a [Geometry],
     pub prepared: &'a [Prepared],
+    pub ranges: &'a [Range],
+    pub seen: &'a [Seen],
     pub low_size: (u32, u32),
     pub columns: &'a Axis,
     pub rows: &'a Axis,
-    /// The history before this frame: `size` pixels of (radiance, age) and geometry.
+    /// The history before this frame: `size` pixels of (radiance, age), and of the index of
+    /// their geometry record in the previous frame's records `geometry`.
     pub history: &'a [[f32; 4]],
+    pub sources: &'a [u32],
     pub geometry: &'a [Geometry],
     pub size: (u32, u32),
     pub frame: TemporalFrame,
@@ -81,190 +152,283 @@ pub(crate) fn move_of(g: &Geometry, frame: &TemporalFrame, moves: &[SurfaceMove]
         .unwrap_or_default()
 }
 
-/// The frame's 3×3 pixels around a history pixel: the range of their finite colours and
-/// their indices.
-struct Neighbourhood {
-    range: Option<([f32; 3], [f32; 3])>,
-    pixels: [u32; 9],
-    count: usize,
-}
-
 /// Whether every channel is finite.
 #[inline]
 fn finite(c: [f32; 3]) -> bool {
     c.iter().all(|v| v.is_finite())
 }
 
-/// |a − b|.
-#[inline]
-fn distance(a: [f32; 4], b: [f32; 3]) -> f32 {
-    let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+impl Preparing<'_> {
+    /// What the resolve needs of frame row `y`: each pixel's [`Prepared`], [`Range`] and
+    /// [`Seen`], four pixels at a time.
+    pub fn row(&self, y: u32, prepared: &mut [Prepared], ranges: &mut [Range], seen: &mut [Seen]) {
+        let start = (y * self.low_size.0) as usize;
+        self.ranges(y, ranges);
+        for (k, (prepared, seen)) in prepared.chunks_mut(4).zip(seen.chunks_mut(4)).enumerate() {
+            self.four(start + 4 * k, prepared, seen);
+        }
+    }
+
+    /// [`Preparing::row`] of the (up to) four frame pixels from `first`: the points moved
+    /// back per pixel, then projected and measured four lanes at once (each lane's
+    /// arithmetic is the scalar's, so it rounds alike).
+    fn four(&self, first: usize, prepared: &mut [Prepared], seen: &mut [Seen]) {
+        let records = &self.low_geometry[first..first + prepared.len()];
+        let mut q = [[0.0f32; 4]; 4];
+        let mut q_before = [[0.0f32; 4]; 4];
+        let mut n_before = [[0.0f32; 3]; 4];
+        let mut existed = [false; 4];
+        for (lane, g) in records.iter().enumerate() {
+            let point = [g.q[0], g.q[1], g.q[2]];
+            let (previous_q, previous_n, is_old) = match move_of(g, self.frame, self.moves) {
+                SurfaceMove::Still => (point, g.n, true),
+                SurfaceMove::Moved(map) => (map.point(point), map.normal(g.n), true),
+                SurfaceMove::New => (point, g.n, false),
+            };
+            q[lane] = g.q;
+            q_before[lane] = [previous_q[0], previous_q[1], previous_q[2], g.q[3]];
+            n_before[lane] = previous_n;
+            existed[lane] = is_old;
+        }
+        let lanes = |v: &[[f32; 4]; 4]| [0, 1, 2, 3].map(|c| Vec4::from_array(v.map(|p| p[c])));
+        let (q, q_before) = (lanes(&q), lanes(&q_before));
+        let (motion, distance) = match &self.frame.previous {
+            Some(previous) => {
+                let (bx, by, b_ok) = project4(previous, q_before, self.size);
+                let (nx, ny, n_ok) = project4(self.camera, q, self.size);
+                let ok = b_ok & n_ok;
+                let (mx, my) = (bx - nx, by - ny);
+                let motion = [0, 1, 2, 3]
+                    .map(|lane| (existed[lane] && ok.test(lane)).then(|| [mx[lane], my[lane]]));
+                let eye = previous.eye;
+                (motion, distance4(q_before, eye.to_array()))
+            }
+            None => ([None; 4], distance4(q_before, [0.0; 3])),
+        };
+        for (lane, ((p, s), g)) in prepared.iter_mut().zip(seen).zip(records).enumerate() {
+            *p = Prepared {
+                motion: motion[lane],
+                tag: g.tag,
+                finite: finite(self.low[first + lane]),
+            };
+            let id = g.tag & ID_MASK;
+            *s = Seen {
+                q: [q_before[0][lane], q_before[1][lane], q_before[2][lane]],
+                tolerance: PLANE_TOLERANCE * distance[lane],
+                n: n_before[lane],
+                key: match (existed[lane], g.q[3] == 0.0) {
+                    (false, _) => NOT_SEEN,
+                    (true, true) => id | DIRECTION,
+                    (true, false) => id,
+                },
+            };
+        }
+    }
+
+    /// The colour ranges of frame row `y`: the minimum and maximum of each column's finite
+    /// colours over rows y − 1 to y + 1, then over columns x − 1 to x + 1 (no frame colour
+    /// is −0, a sum from +0 of non-negative terms, so the order cannot change a bit).
+    fn ranges(&self, y: u32, ranges: &mut [Range]) {
+        let (low_w, low_h) = (self.low_size.0 as usize, self.low_size.1);
+        let rows = (y.saturating_sub(1)..=(y + 1).min(low_h - 1))
+            .map(|ny| &self.low[ny as usize * low_w..][..low_w]);
+        let rows: Vec<&[[f32; 3]]> = rows.collect();
+        let column = |x: usize| {
+            rows.iter()
+                .fold((Vec4::INFINITY, Vec4::NEG_INFINITY), |(lo, hi), row| {
+                    let [r, g, b] = row[x];
+                    let c = Vec4::new(r, g, b, 0.0);
+                    if c.is_finite_mask().all() {
+                        (lo.min(c), hi.max(c))
+                    } else {
+                        (lo, hi)
+                    }
+                })
+        };
+        let mut before = column(0);
+        let mut here = before;
+        for (x, range) in ranges.iter_mut().enumerate() {
+            let after = if x + 1 < low_w { column(x + 1) } else { here };
+            let lo = before.0.min(here.0).min(after.0);
+            let hi = before.1.max(here.1).max(after.1);
+            *range = if lo.x == f32::INFINITY {
+                Range::default()
+            } else {
+                Range {
+                    lo: [lo.x, lo.y, lo.z],
+                    hi: [hi.x, hi.y, hi.z],
+                }
+            };
+            (before, here) = (here, after);
+        }
+    }
+}
+
+/// [`project`] of four points (lanes of x, y, z, w) into a history of `size`: x, y and
+/// whether each lies in front of the camera.
+fn project4(frame: &CameraFrame, q: [Vec4; 4], size: (u32, u32)) -> (Vec4, Vec4, BVec4A) {
+    let e = frame.eye;
+    let point = q[3].cmpne(Vec4::ZERO);
+    let v = [
+        Vec4::select(point, q[0] - e.x, q[0]),
+        Vec4::select(point, q[1] - e.y, q[1]),
+        Vec4::select(point, q[2] - e.z, q[2]),
+    ];
+    let dot = |a: Vec3| v[0] * a.x + v[1] * a.y + v[2] * a.z;
+    let z = dot(frame.forward);
+    let sx = dot(frame.right) / z;
+    let sy = dot(frame.true_up) / z;
+    (
+        (sx / frame.half_width + 1.0) * 0.5 * size.0 as f32,
+        (1.0 - sy / frame.half_height) * 0.5 * size.1 as f32,
+        z.cmpgt(Vec4::ZERO),
+    )
+}
+
+/// The distances |q − eye| of four points (lanes of x, y, z).
+fn distance4(q: [Vec4; 4], eye: [f32; 3]) -> Vec4 {
+    let d = [q[0] - eye[0], q[1] - eye[1], q[2] - eye[2]];
     (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
 }
 
+/// Where a pixel's history lies in the history before this frame: the first of its four
+/// bilinear taps (ix, iy), the fractions past it and the taps' weights.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Reprojection {
+    ix: i32,
+    iy: i32,
+    fx: f32,
+    fy: f32,
+    bilinear: [f32; 4],
+}
+
+/// One history row's working state between the resolve's steps (each step a loop over
+/// the row, so the processor overlaps the pixels' long dependency chains); reused across
+/// rows.
+#[derive(Debug, Default)]
+pub(crate) struct RowScratch {
+    /// Each pixel's frame sample, and whether it landed in the pixel.
+    sources: Vec<u32>,
+    landed: Vec<bool>,
+    /// Each pixel's reprojection, None where it has no history to look up.
+    reprojections: Vec<Option<Reprojection>>,
+    /// Which of its four taps are kept (bit t for tap t).
+    kept: Vec<u8>,
+    /// Its history (colour, age) before the blend, None where there is none.
+    history: Vec<Option<([f32; 3], f32)>>,
+}
+
 impl Inputs<'_> {
-    /// What the resolve needs of a frame pixel, given the frame's camera frame, the
-    /// history's size and how the surfaces moved.
-    pub fn prepare(
-        camera: &CameraFrame,
-        frame: &TemporalFrame,
-        size: (u32, u32),
-        moves: &[SurfaceMove],
-        colour: [f32; 3],
-        g: &Geometry,
-    ) -> Prepared {
-        let q = [g.q[0], g.q[1], g.q[2]];
-        let (previous_q, previous_n, existed) = match move_of(g, frame, moves) {
-            SurfaceMove::Still => (q, g.n, true),
-            SurfaceMove::Moved(map) => (map.point(q), map.normal(g.n), true),
-            SurfaceMove::New => (q, g.n, false),
-        };
-        let motion = frame
-            .previous
-            .as_ref()
-            .filter(|_| existed)
-            .and_then(|previous| {
-                let q_before = [previous_q[0], previous_q[1], previous_q[2], g.q[3]];
-                let before = project(previous, q_before, size.0, size.1)?;
-                let now = project(camera, g.q, size.0, size.1)?;
-                Some([before[0] - now[0], before[1] - now[1]])
-            });
-        let eye = frame
-            .previous
-            .as_ref()
-            .map_or([0.0; 3], |p| p.eye.to_array());
-        Prepared {
-            motion,
-            previous_q,
-            previous_n,
-            distance: distance([previous_q[0], previous_q[1], previous_q[2], 1.0], eye),
-            existed,
-            finite: finite(colour),
-        }
-    }
-
-    /// The new history and geometry of pixel (x, y).
-    pub fn resolve(&self, x: u32, y: u32) -> ([f32; 4], Geometry) {
-        let width = self.size.0;
-        let low_w = self.low_size.0;
-        let (cx, cy) = (
-            self.columns.covering[x as usize],
-            self.rows.covering[y as usize],
-        );
-        let (lx, ly) = (
-            self.columns.landed[x as usize],
-            self.rows.landed[y as usize],
-        );
-        let landed = lx != u32::MAX && ly != u32::MAX;
-        let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
-        let source = (sy * low_w + sx) as usize;
-        let geometry = self.low_geometry[source];
-        let c = self.low[source];
-        let current_ok = self.prepared[source].finite;
-        let fresh = landed && current_ok;
-
-        let history = if self.frame.still {
-            let h = self.history[(y * width + x) as usize];
-            Some(([h[0], h[1], h[2]], h[3]))
-        } else if self.frame.previous.is_some() {
-            let near = self.neighbourhood(cx, cy);
-            self.history_at(x, y, &self.prepared[source], &near)
-                .map(|(colour, age)| match near.range {
-                    Some((lo, hi)) => ([0, 1, 2].map(|i| colour[i].max(lo[i]).min(hi[i])), age),
-                    None => (colour, age),
-                })
-        } else {
-            None
-        };
-        let frame = &self.frame;
-        let approx = geometry.tag & APPROX_FLAG != 0;
-        let mirrored = geometry.tag & MIRROR_FLAG != 0;
-        let cap = if frame.still {
-            STILL_CAP
-        } else if (approx && (frame.eye_moved || frame.world_moved))
-            || (mirrored && frame.world_moved)
-        {
-            SPECULAR_CAP
-        } else {
-            HISTORY_CAP
-        };
-        let out = match (history, fresh) {
-            (Some((h, age)), true) => {
-                let a = age.min(cap);
-                let alpha = 1.0 / (a + 1.0);
-                [
-                    h[0] + (c[0] - h[0]) * alpha,
-                    h[1] + (c[1] - h[1]) * alpha,
-                    h[2] + (c[2] - h[2]) * alpha,
-                    a + 1.0,
-                ]
-            }
-            (Some((h, age)), false) => [h[0], h[1], h[2], age.min(cap)],
-            (None, true) => [c[0], c[1], c[2], 1.0],
-            (None, false) if current_ok => [c[0], c[1], c[2], 0.0],
-            (None, false) => [0.0; 4],
-        };
-        (out, geometry)
-    }
-
-    /// The 3×3 frame pixels around (cx, cy) that lie in the frame, row by row.
-    fn neighbourhood(&self, cx: u32, cy: u32) -> Neighbourhood {
-        let (low_w, low_h) = self.low_size;
-        let mut near = Neighbourhood {
-            range: None,
-            pixels: [0; 9],
-            count: 0,
-        };
-        for ny in cy.saturating_sub(1)..=(cy + 1).min(low_h - 1) {
-            for nx in cx.saturating_sub(1)..=(cx + 1).min(low_w - 1) {
-                let i = ny * low_w + nx;
-                near.pixels[near.count] = i;
-                near.count += 1;
-                if !self.prepared[i as usize].finite {
-                    continue;
-                }
-                let c = self.low[i as usize];
-                near.range = Some(match near.range {
-                    None => (c, c),
-                    Some((lo, hi)) => (
-                        [0, 1, 2].map(|k| lo[k].min(c[k])),
-                        [0, 1, 2].map(|k| hi[k].max(c[k])),
-                    ),
-                });
-            }
-        }
-        near
-    }
-
-    /// Whether the history's surface `old` is one the neighbourhood sees (as it was in the
-    /// previous frame): the same surface id and, for a point, within the tolerance of its
-    /// tangent plane and facing alike.
-    fn seen_nearby(&self, near: &Neighbourhood, old: &Geometry) -> bool {
-        near.pixels[..near.count].iter().any(|&i| {
-            let g = &self.low_geometry[i as usize];
-            let p = &self.prepared[i as usize];
-            if g.tag & ID_MASK != old.tag & ID_MASK || !p.existed {
-                return false;
-            }
-            if g.q[3] == 0.0 {
-                return true;
-            }
-            let q = p.previous_q;
-            let off = [old.q[0] - q[0], old.q[1] - q[1], old.q[2] - q[2]];
-            dot3(off, p.previous_n).abs() <= PLANE_TOLERANCE * p.distance
-                && dot3(p.previous_n, old.n) >= NORMAL_COS
-        })
-    }
-
-    /// The reprojected history of pixel (x, y), whose frame sample is `sample`: its filtered
-    /// colour and age, or None where there is none to keep.
-    fn history_at(
+    /// The new history of row `y` (`colours`), and the frame pixel whose record is each
+    /// pixel's geometry (`sources`).
+    pub fn resolve_row(
         &self,
-        x: u32,
         y: u32,
-        sample: &Prepared,
-        near: &Neighbourhood,
-    ) -> Option<([f32; 3], f32)> {
+        colours: &mut [[f32; 4]],
+        sources: &mut [u32],
+        scratch: &mut RowScratch,
+    ) {
+        let width = self.size.0 as usize;
+        let low_w = self.low_size.0;
+        let (cy, ly) = (self.rows.covering[y as usize], self.rows.landed[y as usize]);
+        scratch.sources.clear();
+        scratch.landed.clear();
+        for (&cx, &lx) in self.columns.covering.iter().zip(&self.columns.landed) {
+            let landed = lx != u32::MAX && ly != u32::MAX;
+            let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
+            scratch.sources.push(sy * low_w + sx);
+            scratch.landed.push(landed);
+        }
+        scratch.history.clear();
+        if self.frame.still {
+            let row = &self.history[y as usize * width..][..width];
+            scratch
+                .history
+                .extend(row.iter().map(|h| Some(([h[0], h[1], h[2]], h[3]))));
+        } else if self.frame.previous.is_some() {
+            self.reprojected_row(y, cy, scratch);
+        } else {
+            scratch.history.resize(width, None);
+        }
+        let frame = &self.frame;
+        for (x, (colour, source)) in colours.iter_mut().zip(sources).enumerate() {
+            *source = scratch.sources[x];
+            let sample = &self.prepared[*source as usize];
+            let c = self.low[*source as usize];
+            let current_ok = sample.finite;
+            let fresh = scratch.landed[x] && current_ok;
+            let approx = sample.tag & APPROX_FLAG != 0;
+            let mirrored = sample.tag & MIRROR_FLAG != 0;
+            let cap = if frame.still {
+                STILL_CAP
+            } else if (approx && (frame.eye_moved || frame.world_moved))
+                || (mirrored && frame.world_moved)
+            {
+                SPECULAR_CAP
+            } else {
+                HISTORY_CAP
+            };
+            *colour = match (scratch.history[x], fresh) {
+                (Some((h, age)), true) => {
+                    let a = age.min(cap);
+                    let alpha = 1.0 / (a + 1.0);
+                    [
+                        h[0] + (c[0] - h[0]) * alpha,
+                        h[1] + (c[1] - h[1]) * alpha,
+                        h[2] + (c[2] - h[2]) * alpha,
+                        a + 1.0,
+                    ]
+                }
+                (Some((h, age)), false) => [h[0], h[1], h[2], age.min(cap)],
+                (None, true) => [c[0], c[1], c[2], 1.0],
+                (None, false) if current_ok => [c[0], c[1], c[2], 0.0],
+                (None, false) => [0.0; 4],
+            };
+        }
+    }
+
+    /// The reprojected, filtered and clamped history of row `y` (whose frame row is `cy`)
+    /// of a moving frame, into `scratch.history`: where each pixel's sample was in the
+    /// previous frame, which of the four taps there are still seen around the pixel, and
+    /// their filter.
+    fn reprojected_row(&self, y: u32, cy: u32, scratch: &mut RowScratch) {
+        let low_w = self.low_size.0;
+        scratch.reprojections.clear();
+        scratch.reprojections.extend(
+            scratch
+                .sources
+                .iter()
+                .enumerate()
+                .map(|(x, &source)| self.reproject(x as u32, y, &self.prepared[source as usize])),
+        );
+        scratch.kept.clear();
+        scratch.kept.extend(
+            scratch
+                .reprojections
+                .iter()
+                .zip(&self.columns.covering)
+                .map(|(r, &cx)| r.as_ref().map_or(0, |r| self.kept_taps(cx, cy, r))),
+        );
+        for ((r, &kept), &cx) in scratch
+            .reprojections
+            .iter()
+            .zip(&scratch.kept)
+            .zip(&self.columns.covering)
+        {
+            let Range { lo, hi } = self.ranges[(cy * low_w + cx) as usize];
+            let history = r
+                .as_ref()
+                .and_then(|r| self.filtered(r, kept))
+                .map(|(colour, age)| ([0, 1, 2].map(|i| colour[i].max(lo[i]).min(hi[i])), age));
+            scratch.history.push(history);
+        }
+    }
+
+    /// Where the history of pixel (x, y), whose frame sample is `sample`, lies in the
+    /// history before this frame; None where it has none (a new surface, behind a camera,
+    /// outside the history).
+    #[inline]
+    fn reproject(&self, x: u32, y: u32, sample: &Prepared) -> Option<Reprojection> {
         let (width, height) = self.size;
         let motion = sample.motion?;
         let bx = x as f32 + motion[0];
@@ -274,60 +438,114 @@ impl Inputs<'_> {
         }
         let (fx0, fy0) = (floor(bx), floor(by));
         let (fx, fy) = (bx - fx0, by - fy0);
-        let (ix, iy) = (fx0 as i32, fy0 as i32);
-        let bilinear = [
-            (1.0 - fx) * (1.0 - fy),
-            fx * (1.0 - fy),
-            (1.0 - fx) * fy,
-            fx * fy,
-        ];
-        let taps = [(ix, iy), (ix + 1, iy), (ix, iy + 1), (ix + 1, iy + 1)];
-        let mut all_valid = true;
+        Some(Reprojection {
+            ix: fx0 as i32,
+            iy: fy0 as i32,
+            fx,
+            fy,
+            bilinear: [
+                (1.0 - fx) * (1.0 - fy),
+                fx * (1.0 - fy),
+                (1.0 - fx) * fy,
+                fx * fy,
+            ],
+        })
+    }
+
+    /// Which of the four taps of `r` lie in the history and hold a surface that the frame's
+    /// pixels around (cx, cy) still see (bit t for tap t).
+    #[inline]
+    fn kept_taps(&self, cx: u32, cy: u32, r: &Reprojection) -> u8 {
+        let (width, height) = (self.size.0 as i32, self.size.1 as i32);
+        let mut kept = 0;
+        for t in 0..4 {
+            let (tx, ty) = (r.ix + (t & 1), r.iy + (t >> 1));
+            if tx < 0 || ty < 0 || tx >= width || ty >= height {
+                continue;
+            }
+            let i = (ty * width + tx) as usize;
+            if self.seen_nearby(cx, cy, &self.geometry[self.sources[i] as usize]) {
+                kept |= 1 << t;
+            }
+        }
+        kept
+    }
+
+    /// The history at `r` from the `kept` taps: the Catmull–Rom filter when all four are
+    /// kept and its window lies in the history, else the kept taps' bilinear average; the
+    /// age is the kept taps' bilinear average. None when no tap is kept or the colour is not
+    /// finite.
+    #[inline]
+    fn filtered(&self, r: &Reprojection, kept: u8) -> Option<([f32; 3], f32)> {
+        let (width, height) = (self.size.0 as i32, self.size.1 as i32);
         let mut weight = 0.0f32;
-        let mut colour = [0.0f32; 3];
-        let mut age = 0.0f32;
-        for (&(tx, ty), &w) in taps.iter().zip(&bilinear) {
-            if tx < 0 || ty < 0 || tx >= width as i32 || ty >= height as i32 {
-                all_valid = false;
+        // Colour and age, summed alike lane by lane.
+        let mut sum = Vec4::ZERO;
+        for (t, &w) in r.bilinear.iter().enumerate() {
+            if kept & (1 << t) == 0 {
                 continue;
             }
-            let i = (ty as u32 * width + tx as u32) as usize;
-            if !self.seen_nearby(near, &self.geometry[i]) {
-                all_valid = false;
-                continue;
-            }
-            let h = self.history[i];
+            let (tx, ty) = (r.ix + (t as i32 & 1), r.iy + (t as i32 >> 1));
             weight += w;
-            colour = [0, 1, 2].map(|c| colour[c] + w * h[c]);
-            age += w * h[3];
+            sum += w * Vec4::from_array(self.history[(ty * width + tx) as usize]);
         }
         if weight <= 0.0 {
             return None;
         }
-        let inside = ix >= 1 && iy >= 1 && ix + 2 < width as i32 && iy + 2 < height as i32;
-        let colour = if all_valid && inside {
-            self.catmull_rom(ix, iy, fx, fy)
+        let (ix, iy) = (r.ix, r.iy);
+        let inside = ix >= 1 && iy >= 1 && ix + 2 < width && iy + 2 < height;
+        let colour = if kept == 0b1111 && inside {
+            self.catmull_rom(ix, iy, r.fx, r.fy)
         } else {
-            colour.map(|c| c / weight)
+            [sum.x / weight, sum.y / weight, sum.z / weight]
         };
-        finite(colour).then_some((colour, age / weight))
+        finite(colour).then_some((colour, sum.w / weight))
+    }
+
+    /// Whether the history's surface `old` is one the frame's 3×3 pixels around (cx, cy)
+    /// see: the centre is asked first, as it is the likeliest.
+    #[inline]
+    fn seen_nearby(&self, cx: u32, cy: u32, old: &Geometry) -> bool {
+        let (low_w, low_h) = self.low_size;
+        if self.seen[(cy * low_w + cx) as usize].sees(old) {
+            return true;
+        }
+        let (x0, x1) = (cx.saturating_sub(1), (cx + 1).min(low_w - 1));
+        for ny in cy.saturating_sub(1)..=(cy + 1).min(low_h - 1) {
+            let row = &self.seen[(ny * low_w + x0) as usize..=(ny * low_w + x1) as usize];
+            let skip = if ny == cy {
+                (cx - x0) as usize
+            } else {
+                usize::MAX
+            };
+            if row
+                .iter()
+                .enumerate()
+                .any(|(k, s)| k != skip && s.sees(old))
+            {
+                return true;
+            }
+        }
+        false
     }
 
     /// The history's Catmull–Rom filter over the 4×4 pixels from (ix − 1, iy − 1) at
-    /// fractions (fx, fy) past (ix, iy): rows first, then the column.
+    /// fractions (fx, fy) past (ix, iy): rows first, then the column (the age lane is
+    /// summed alike and dropped).
+    #[inline]
     fn catmull_rom(&self, ix: i32, iy: i32, fx: f32, fy: f32) -> [f32; 3] {
         let (wx, wy) = (catmull_rom(fx), catmull_rom(fy));
         let width = self.size.0 as usize;
         let first = (iy - 1) as usize * width + (ix - 1) as usize;
-        let mut sum = [0.0f32; 3];
+        let mut sum = Vec4::ZERO;
         for (b, &wb) in wy.iter().enumerate() {
             let row = &self.history[first + b * width..][..4];
-            let mut line = [0.0f32; 3];
+            let mut line = Vec4::ZERO;
             for (h, &wa) in row.iter().zip(&wx) {
-                line = [0, 1, 2].map(|c| line[c] + wa * h[c]);
+                line += wa * Vec4::from_array(*h);
             }
-            sum = [0, 1, 2].map(|c| sum[c] + wb * line[c]);
+            sum += wb * line;
         }
-        sum
+        [sum.x, sum.y, sum.z]
     }
 }
