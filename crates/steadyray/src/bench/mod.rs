@@ -52,7 +52,8 @@ pub struct BenchArgs {
     /// Frames in the sweep (frame k has yaw 2π·k/frames).
     #[arg(long, default_value_t = 720)]
     pub frames: u32,
-    /// Warm-up frames at the first view before each controller's counted frames.
+    /// Warm-up frames before each controller's counted frames: at the first view under the
+    /// frame clock; under the real clock one refresh apart leading up to the path's start.
     #[arg(long, default_value_t = 10)]
     pub warmup: u32,
     /// Lower edge of the frame-time band, ms.

@@ -20,8 +20,11 @@ pub struct RealSweep {
     pub display: DisplayConfig,
     /// Display time per run, s.
     pub duration_s: f64,
-    /// Frames rendered (and shown to the controller) at the path's start before the run; the
-    /// last of them is on screen until the run's first frame replaces it.
+    /// Frames rendered (and shown to the controller) before the run, one refresh apart on
+    /// the path's time up to its start (t = −warmup·P, ..., −P: a looping path's lead-in),
+    /// so the controller's first measurements, and a temporal history, are of a moving
+    /// camera as in the run; the last of them is on screen until the run's first frame
+    /// replaces it.
     pub warmup: u32,
     pub band: Band,
     pub bounds: Bounds,
@@ -87,7 +90,7 @@ struct OnScreen {
     picture: Option<Rgb8Image>,
 }
 
-/// Runs `controller` under the real clock: warm-up frames at the path's start, then frames
+/// Runs `controller` under the real clock: warm-up frames leading up to the path's start, then frames
 /// for as long as one starts before the run's end, each rendering the path at the time the
 /// display model predicts it will be shown. Pictures of the frames on screen at the samples
 /// `keep` asks for are kept (read back with the hand-over, outside the timing).
@@ -104,8 +107,9 @@ pub fn run_controller_real(
     let mut clock = RealClock::new(sweep.display, sweep.duration_s)?;
     let (period, end) = (sweep.display.period_ms(), clock.duration_ms());
     let mut warm_picture = None;
-    for _ in 0..sweep.warmup {
-        let m = source.frame(PathPoint::Time { index: 0, t_s: 0.0 }, controller.quality())?;
+    for k in (1..=sweep.warmup).rev() {
+        let t_s = -f64::from(k) * period / 1000.0;
+        let m = source.frame(PathPoint::Time { index: 0, t_s }, controller.quality())?;
         let handed = source.hand_over()?;
         // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
         let _ = controller.observe(&m.report);
@@ -194,6 +198,77 @@ pub fn run_controller_real(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bench::source::{HandOver, Measured, SimulatedSource, simulated};
+    use steadyray_control::{Quality, Setup, from_name};
+    use steadyray_display::SyncMode;
+    use steadyray_render::Image;
+
+    /// The simulated source, recording the path times it is asked for.
+    struct Recording {
+        inner: SimulatedSource,
+        times: Vec<f64>,
+    }
+
+    impl FrameSource for Recording {
+        fn describe(&self) -> (String, String) {
+            self.inner.describe()
+        }
+        fn resolution(&self) -> (u32, u32) {
+            self.inner.resolution()
+        }
+        fn path_duration_s(&self) -> f64 {
+            self.inner.path_duration_s()
+        }
+        fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+            if let PathPoint::Time { t_s, .. } = at {
+                self.times.push(t_s);
+            }
+            self.inner.frame(at, q)
+        }
+        fn hand_over(&mut self) -> Result<HandOver> {
+            self.inner.hand_over()
+        }
+        fn load_changes(&self, n: u32) -> Option<Vec<usize>> {
+            self.inner.load_changes(n)
+        }
+        fn last_image(&mut self) -> Result<Option<Image>> {
+            self.inner.last_image()
+        }
+        fn set_temporal(&mut self, on: bool) -> Result<()> {
+            self.inner.set_temporal(on)
+        }
+    }
+
+    #[test]
+    fn warm_up_frames_lead_up_to_the_start_one_refresh_apart() {
+        let mut source = Recording {
+            inner: simulated(720),
+            times: Vec::new(),
+        };
+        let bounds = Bounds::default();
+        let setup = Setup::new(Band::PAPER, bounds, Quality::new(1.0, 4, 1.0)).unwrap();
+        let mut controller = from_name("predictive", setup, "").unwrap();
+        let sweep = RealSweep {
+            display: DisplayConfig::new(50.0, SyncMode::Vsync).unwrap(),
+            duration_s: 0.5,
+            warmup: 4,
+            band: Band::PAPER,
+            bounds,
+        };
+        let run = run_controller_real(
+            &mut source,
+            controller.as_mut(),
+            "predictive",
+            &sweep,
+            Keep::Nothing,
+            &ProgressBar::hidden(),
+        )
+        .unwrap();
+        let (warm, counted) = source.times.split_at(4);
+        assert_eq!(warm, [-0.08, -0.06, -0.04, -0.02]);
+        assert_eq!(counted.len(), run.rows.len());
+        assert!(counted.iter().all(|&t| t >= 0.0), "{counted:?}");
+    }
 
     #[test]
     fn kept_samples_in_a_span() {
