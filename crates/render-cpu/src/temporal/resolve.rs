@@ -174,6 +174,7 @@ impl Preparing<'_> {
     /// arithmetic is the scalar's, so it rounds alike).
     fn four(&self, first: usize, prepared: &mut [Prepared], seen: &mut [Seen]) {
         let records = &self.low_geometry[first..first + prepared.len()];
+        // Component-major: q[c][lane].
         let mut q = [[0.0f32; 4]; 4];
         let mut q_before = [[0.0f32; 4]; 4];
         let mut n_before = [[0.0f32; 3]; 4];
@@ -185,29 +186,44 @@ impl Preparing<'_> {
                 SurfaceMove::Moved(map) => (map.point(point), map.normal(g.n), true),
                 SurfaceMove::New => (point, g.n, false),
             };
-            q[lane] = g.q;
-            q_before[lane] = [previous_q[0], previous_q[1], previous_q[2], g.q[3]];
+            for c in 0..4 {
+                q[c][lane] = g.q[c];
+            }
+            for c in 0..3 {
+                q_before[c][lane] = previous_q[c];
+            }
+            q_before[3][lane] = g.q[3];
             n_before[lane] = previous_n;
             existed[lane] = is_old;
         }
-        let lanes = |v: &[[f32; 4]; 4]| [0, 1, 2, 3].map(|c| Vec4::from_array(v.map(|p| p[c])));
+        let lanes = |v: &[[f32; 4]; 4]| {
+            [
+                Vec4::from_array(v[0]),
+                Vec4::from_array(v[1]),
+                Vec4::from_array(v[2]),
+                Vec4::from_array(v[3]),
+            ]
+        };
         let (q, q_before) = (lanes(&q), lanes(&q_before));
         let (motion, distance) = match &self.frame.previous {
             Some(previous) => {
                 let (bx, by, b_ok) = project4(previous, q_before, self.size);
                 let (nx, ny, n_ok) = project4(self.camera, q, self.size);
-                let ok = b_ok & n_ok;
-                let (mx, my) = (bx - nx, by - ny);
-                let motion = [0, 1, 2, 3]
-                    .map(|lane| (existed[lane] && ok.test(lane)).then(|| [mx[lane], my[lane]]));
-                let eye = previous.eye;
-                (motion, distance4(q_before, eye.to_array()))
+                let eye = previous.eye.to_array();
+                (
+                    Some((bx - nx, by - ny, b_ok & n_ok)),
+                    distance4(q_before, eye),
+                )
             }
-            None => ([None; 4], distance4(q_before, [0.0; 3])),
+            None => (None, distance4(q_before, [0.0; 3])),
         };
         for (lane, ((p, s), g)) in prepared.iter_mut().zip(seen).zip(records).enumerate() {
+            let motion = match motion {
+                Some((mx, my, ok)) if existed[lane] && ok.test(lane) => Some([mx[lane], my[lane]]),
+                _ => None,
+            };
             *p = Prepared {
-                motion: motion[lane],
+                motion,
                 tag: g.tag,
                 finite: finite(self.low[first + lane]),
             };
