@@ -186,11 +186,11 @@ impl Preparing<'_> {
                 SurfaceMove::Moved(map) => (map.point(point), map.normal(g.n), true),
                 SurfaceMove::New => (point, g.n, false),
             };
-            for c in 0..4 {
-                q[c][lane] = g.q[c];
+            for (component, &v) in q.iter_mut().zip(&g.q) {
+                component[lane] = v;
             }
-            for c in 0..3 {
-                q_before[c][lane] = previous_q[c];
+            for (component, &v) in q_before.iter_mut().zip(&previous_q) {
+                component[lane] = v;
             }
             q_before[3][lane] = g.q[3];
             n_before[lane] = previous_n;
