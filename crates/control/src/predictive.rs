@@ -63,6 +63,8 @@ pub const KEEP_SLACK: f64 = 0.05;
 pub const MIN_INNER: f64 = 0.12;
 /// Continuous knobs are found to this relative precision.
 const SEARCH_STEPS: u32 = 40;
+/// A trade ([`PredictiveParams::trades`]) counts S and scale as unchanged within this fraction.
+pub const TRADE_MARGIN: f64 = 0.02;
 
 /// Parameters of [`Predictive`], with their option names and defaults.
 #[derive(Clone, Debug, PartialEq)]
@@ -85,6 +87,12 @@ pub struct PredictiveParams {
     /// a cut even when the model still predicts the quality fits (the model lags a cost that
     /// drifts with the view). Without it only frames over Tmax do. Default true.
     pub measured_cut: bool,
+    /// `trades`: inside the inner band, move to where the knob order would settle for the
+    /// target from the lowest quality when that is a trade with the current quality (an
+    /// earlier knob higher, a later one lower), so the quality held follows the view and not
+    /// the way the run came there: raises and cuts never trade, so without it an R cut on
+    /// a view that needed little stays cut on views that need more. Default true.
+    pub trades: bool,
     /// The cost model's parameters (options `forgetting`, `outlier_k`, `confirm`).
     pub cost: CostParams,
     /// `ladder`: a calibrated ladder file (`ladder.json`) to move along instead of `order`.
@@ -102,6 +110,7 @@ impl Default for PredictiveParams {
             max_raise: 2.0,
             trend: 0.5,
             measured_cut: true,
+            trades: true,
             cost: CostParams::default(),
             ladder: None,
         }
@@ -109,7 +118,7 @@ impl Default for PredictiveParams {
 }
 
 const PREDICTIVE_KEYS: &str = "order, target, deadband, min_reach, max_raise, trend, measured_cut, \
-                               forgetting, outlier_k, confirm, ladder";
+                               trades, forgetting, outlier_k, confirm, ladder";
 
 impl PredictiveParams {
     /// Sets one option by name (used by [`crate::from_name`]).
@@ -122,6 +131,7 @@ impl PredictiveParams {
             "max_raise" => self.max_raise = parse_option(key, value, within(1.01, 1e6))?,
             "trend" => self.trend = parse_option(key, value, within(0.0, 1.0))?,
             "measured_cut" => self.measured_cut = parse_option(key, value, |_| Ok(()))?,
+            "trades" => self.trades = parse_option(key, value, |_| Ok(()))?,
             "forgetting" => self.cost.forgetting = parse_option(key, value, within(0.01, 1.0))?,
             "outlier_k" => self.cost.outlier_k = parse_option(key, value, within(1.0, 1e6))?,
             "confirm" => self.cost.confirm = parse_option(key, value, within(1, 100))?,
@@ -312,7 +322,10 @@ impl Predictive {
         let aim = self.aim();
         let raising = now < aim.low_ms;
         if !raising && now <= aim.high_ms {
-            return (self.quality, None);
+            let trade = (p.trades && p.ladder.is_none())
+                .then(|| self.order_trade(load, aim.target_ms))
+                .flatten();
+            return (trade.unwrap_or(self.quality), None);
         }
         let target = aim.target_ms;
         let ray_cap = if raising {
@@ -438,47 +451,91 @@ impl Predictive {
         self.quality
     }
 
+    /// Where the knob order would settle for `target_ms` on the current view, raised from
+    /// [`Predictive::lowest`], when that is a trade with the current quality: the first knob of the
+    /// order on which they differ is higher in the plan and a later one lower (S and scale
+    /// count as equal within [`TRADE_MARGIN`]). None otherwise, so inside the inner band the
+    /// quality only moves to follow the view, never to creep.
+    fn order_trade(&self, load: &RayModel, target_ms: f64) -> Option<Quality> {
+        let fits = |q: &Quality| self.predict_ms(q).is_some_and(|t| t <= target_ms);
+        let plan = self.climb(self.lowest(), &self.raise_stages(load), fits);
+        let compare = |knob: Knob| {
+            let (planned, now) = (plan.get(knob), self.quality.get(knob));
+            if knob != Knob::Depth && (planned - now).abs() <= TRADE_MARGIN * now {
+                std::cmp::Ordering::Equal
+            } else {
+                planned.total_cmp(&now)
+            }
+        };
+        let order = self.params.order.knobs();
+        let first = order.iter().position(|&k| compare(k).is_ne())?;
+        let later_lower = order[first + 1..].iter().any(|&k| compare(k).is_lt());
+        (compare(order[first]).is_gt() && later_lower).then_some(plan)
+    }
+
+    /// The knobs a raise goes through, each with its top: R up to the useful depth on the
+    /// current view, then the others in order, then the rest of R.
+    fn raise_stages(&self, load: &RayModel) -> Vec<(Knob, f64)> {
+        let b = &self.setup.bounds;
+        let order = self.params.order.knobs();
+        let useful = load.useful_depth(self.params.min_reach, b.depth_min, b.depth_max);
+        let mut stages: Vec<(Knob, f64)> = order
+            .iter()
+            .map(|&k| {
+                let top = if k == Knob::Depth {
+                    f64::from(useful)
+                } else {
+                    b.range(k).1
+                };
+                (k, top)
+            })
+            .collect();
+        if order.contains(&Knob::Depth) {
+            stages.push((Knob::Depth, f64::from(b.depth_max)));
+        }
+        stages
+    }
+
     /// The highest quality along the knob order for which `fits` holds. A raise starts from
-    /// the current quality and only raises knobs: R up to the useful depth, then the others
-    /// in order, then the rest of R. A cut only lowers knobs: the highest quality below the
-    /// current one in the order, so the last knob in the order goes first (the lowest quality
-    /// if nothing fits). Moves are never trades (one knob up, another down).
+    /// the current quality and only raises knobs ([`Predictive::raise_stages`]). A cut only
+    /// lowers knobs: the highest quality below the current one in the order, so the last
+    /// knob in the order goes first (the lowest quality if nothing fits). Neither trades one
+    /// knob for another; [`Predictive::order_trade`] does, inside the inner band.
     fn best_fitting(
         &self,
         load: &RayModel,
         fits: impl Fn(&Quality) -> bool,
         raising: bool,
     ) -> Quality {
-        let b = &self.setup.bounds;
+        if raising {
+            return self.climb(self.quality, &self.raise_stages(load), fits);
+        }
         let order = self.params.order.knobs();
-        let current = self.quality;
-        let mut q = current;
-        let stages: Vec<(Knob, f64)> = if raising {
-            let useful = load.useful_depth(self.params.min_reach, b.depth_min, b.depth_max);
-            let mut stages: Vec<(Knob, f64)> = order
-                .iter()
-                .map(|&k| {
-                    (
-                        k,
-                        if k == Knob::Depth {
-                            f64::from(useful)
-                        } else {
-                            b.range(k).1
-                        },
-                    )
-                })
-                .collect();
-            if order.contains(&Knob::Depth) {
-                stages.push((Knob::Depth, f64::from(b.depth_max)));
-            }
-            stages
-        } else {
-            for &knob in order {
-                q = q.with(knob, b.range(knob).0);
-            }
-            order.iter().map(|&k| (k, current.get(k))).collect()
-        };
-        for (knob, top) in stages {
+        let stages: Vec<(Knob, f64)> = order.iter().map(|&k| (k, self.quality.get(k))).collect();
+        self.climb(self.lowest(), &stages, fits)
+    }
+
+    /// The current quality with every knob of the order at its lowest.
+    fn lowest(&self) -> Quality {
+        let b = &self.setup.bounds;
+        self.params
+            .order
+            .knobs()
+            .iter()
+            .fold(self.quality, |q, &knob| q.with(knob, b.range(knob).0))
+    }
+
+    /// From `q`, each knob of `stages` raised in turn to its top while `fits` holds; the
+    /// first that cannot reach its top is raised as far as fits (R level by level, S and
+    /// scale by bisection), and that is the answer.
+    fn climb(
+        &self,
+        mut q: Quality,
+        stages: &[(Knob, f64)],
+        fits: impl Fn(&Quality) -> bool,
+    ) -> Quality {
+        let b = &self.setup.bounds;
+        for &(knob, top) in stages {
             let from = q.get(knob);
             if top <= from {
                 continue;

@@ -415,3 +415,53 @@ fn a_drifting_cost_per_ray_is_followed_without_swinging() {
         }
     }
 }
+
+/// A pass-sized fixed cost (8 ms, as the temporal mode's on two cores) and a view whose
+/// rays bounce between the mirrors: from the top, `predictive` keeps R = 16 and cuts the
+/// scale. A run that arrives with R cut (here it starts at R = 3, as after an overload cut
+/// on a view where deeper levels carried under 2 % of the rays) raises R only as deep as it
+/// has seen rays go, then the scale, and once inside the inner band raises and cuts do
+/// nothing: without trades it stays short of R = 16; with them it reaches what the run
+/// from the top holds.
+#[test]
+fn an_r_cut_on_a_shallow_view_is_traded_back_on_a_deep_one() {
+    let load = corridor_load(0.0);
+    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
+    model.fixed_ms = 8.0;
+    let one = Quality::new(1.0, 16, 1.0);
+    model.ns_per_ray *= 10.0 / (model.ideal_ms(&one, &load) - model.fixed_ms);
+    let from_top = run(controller("predictive", top()).as_mut(), &model, 300);
+    let settled = from_top[299].quality;
+    assert_eq!(settled.depth, 16, "{settled}");
+    // R = 3 at the scale that takes the band's centre.
+    let (mut lo, mut hi) = (0.25f32, 1.0f32);
+    for _ in 0..30 {
+        let mid = 0.5 * (lo + hi);
+        if model.ideal_ms(&Quality::new(1.0, 3, mid), &load) < BAND.centre_ms() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let cut = Quality::new(1.0, 3, lo);
+    for (options, traded) in [("", true), ("trades=false", false)] {
+        let mut c = from_name("predictive", setup(cut), options).unwrap();
+        let records = run(c.as_mut(), &model, 300);
+        let last = records[299].quality;
+        println!("predictive {options}: from {cut} to {last} (from the top: {settled})");
+        if traded {
+            assert_eq!(last.depth, settled.depth, "{last}");
+            assert!(
+                (last.scale - settled.scale).abs() <= 0.05,
+                "{last} vs {settled}"
+            );
+        } else {
+            assert!(last.depth < 16, "without trades R came back: {last}");
+        }
+        let s = summarize(&records[50..], BAND, top(), Some(&[]));
+        assert!(
+            s.in_band_pct >= 95.0 && s.reversals_per_100 <= 2.0,
+            "{options}: {s:?}"
+        );
+    }
+}
