@@ -14,8 +14,11 @@
 //!    exponential average of the frame-to-frame growth of the load, weight `trend`, each
 //!    growth clamped to ±10 %.
 //! 3. Deadband: if the current quality's predicted time lies inside the inner band, nothing
-//!    changes. This is what keeps it still in steady state: the prediction uses the measured
-//!    rays, which carry no timer noise. The inner band starts as
+//!    changes, except a trade (`trades`, default on): when the knob order's own plan for the
+//!    target, raised from the lowest quality, has an earlier knob higher and a later one
+//!    lower than the current quality, it moves there (R cut on a shallow view comes back on
+//!    a deep one; raises and cuts never trade). This is what keeps it still in steady state:
+//!    the prediction uses the measured rays, which carry no timer noise. The inner band starts as
 //!    [Tmin + `deadband`·w, Tmax − `deadband`·w] (w = Tmax − Tmin) around the target
 //!    Tmin + `target`·w; once the recent prediction errors are known, target and inner band
 //!    follow them ([`Predictive::aim`]): on a machine whose noise only ever slows frames
