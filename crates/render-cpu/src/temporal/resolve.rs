@@ -3,10 +3,10 @@
 //! seen around the pixel, filter them, clamp to the frame's local colour range and blend (a
 //! still camera keeps the history as it is). The arithmetic is `temporal.wgsl`'s operation
 //! for operation, so both round alike. What the GPU computes per history pixel the CPU
-//! computes once per frame pixel ([`Prepared`]: the sample's motion, its neighbourhood's
-//! colour range, its surface as the neighbourhood test reads it) or once per row and column
-//! ([`Axis`]), and it tests a tap against the neighbourhood's centre first; none of that
-//! changes a result.
+//! computes once per frame pixel (the sample's motion, [`Prepared`]; its neighbourhood's
+//! colour range, [`Range`]; its surface as the neighbourhood test reads it, [`Seen`]) or once
+//! per row and column ([`Axis`]), and it tests a tap against the neighbourhood's centre
+//! first; none of that changes a result.
 
 use super::geometry::Geometry;
 use glam::{BVec4A, Vec3, Vec4};
@@ -318,9 +318,9 @@ pub(crate) struct Reprojection {
     bilinear: [f32; 4],
 }
 
-/// One history row's working state between the resolve's steps (each step a loop over
-/// the row, so the processor overlaps the pixels' long dependency chains); reused across
-/// rows.
+/// One history row's working state between the resolve's steps (each a loop over the row:
+/// the sample, the reprojection, the kept taps, the filter, the blend; each step can be
+/// measured on its own), reused across rows.
 #[derive(Debug, Default)]
 pub(crate) struct RowScratch {
     /// Each pixel's frame sample, and whether it landed in the pixel.
