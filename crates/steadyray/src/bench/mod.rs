@@ -106,7 +106,8 @@ pub struct BenchArgs {
     #[arg(long)]
     pub quality: bool,
     /// With --quality: measure frames 0, K, 2K, ... of the sweep (with --clock real: the
-    /// screen at refreshes 0, K, 2K, ...).
+    /// screen at one refresh in K, its place in each run of K moving on from run to run, so
+    /// frames held for several refreshes are seen at each of them).
     #[arg(long, default_value_t = 24, value_name = "K")]
     pub every: u32,
     /// With --quality or --video: the reference's eye rays per pixel S, at full scale

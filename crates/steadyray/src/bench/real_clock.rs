@@ -36,7 +36,12 @@ pub struct RealSweep {
 pub enum Keep {
     /// No pictures.
     Nothing,
-    /// Samples 0, K, 2K, ... (`Every(1)`: all of them).
+    /// One sample in K, its place in each run of K moving on by one from run to run: sample
+    /// i where i mod K = ⌊i / K⌋ mod K (K = 2: 0, 3, 4, 7, 8, ...; `Every(1)`: all of them).
+    /// A fixed place (0, K, 2K, ...) aliases with frames shown for a number of refreshes
+    /// sharing a factor with K: at K = 2, frames shown for two refreshes each (30 frames a
+    /// second at 60 Hz) were all seen at their first refresh, or all at their second, and
+    /// the mean screen age, with it displayed FLIP, hung on which.
     Every(u32),
 }
 
@@ -45,20 +50,23 @@ impl Keep {
     pub fn wants(self, i: usize) -> bool {
         match self {
             Keep::Nothing => false,
-            Keep::Every(k) => i.is_multiple_of(k.max(1) as usize),
+            Keep::Every(k) => {
+                let k = k.max(1) as usize;
+                i % k == (i / k) % k
+            }
         }
     }
 
     /// Whether a kept sample falls in [`from_ms`, `to_ms`) and before `end_ms`, samples being
     /// every `period_ms`: whether a frame on screen over that span must be kept.
     fn any_in(self, from_ms: f64, to_ms: f64, period_ms: f64, end_ms: f64) -> bool {
-        let Keep::Every(k) = self else {
+        if self == Keep::Nothing {
             return false;
-        };
-        let k = u64::from(k.max(1));
-        let i = refresh_at_or_after(from_ms, period_ms).div_ceil(k) * k;
-        let t = i as f64 * period_ms;
-        t < to_ms - TIME_EPS_MS && t < end_ms - TIME_EPS_MS
+        }
+        let last_ms = to_ms.min(end_ms) - TIME_EPS_MS;
+        (refresh_at_or_after(from_ms, period_ms)..)
+            .take_while(|&i| (i as f64 * period_ms) < last_ms)
+            .any(|i| self.wants(i as usize))
     }
 }
 
@@ -274,9 +282,14 @@ mod tests {
     fn kept_samples_in_a_span() {
         let p = 10.0;
         let every2 = Keep::Every(2);
+        let kept: Vec<usize> = (0..12).filter(|&i| every2.wants(i)).collect();
+        assert_eq!(kept, [0, 3, 4, 7, 8, 11]);
         assert!(every2.any_in(0.0, 5.0, p, 100.0), "sample 0");
-        assert!(!every2.any_in(5.0, 20.0, p, 100.0), "sample 1 is not kept");
-        assert!(every2.any_in(5.0, 20.5, p, 100.0), "sample 2 at 20");
+        assert!(
+            !every2.any_in(5.0, 30.0, p, 100.0),
+            "samples 1 and 2 are not kept"
+        );
+        assert!(every2.any_in(5.0, 30.5, p, 100.0), "sample 3 at 30");
         assert!(
             !every2.any_in(95.0, f64::INFINITY, p, 100.0),
             "after the end"
@@ -286,6 +299,25 @@ mod tests {
             "a frame shown at a sample"
         );
         assert!(!Keep::Nothing.any_in(0.0, 100.0, p, 100.0));
-        assert!(every2.wants(4) && !every2.wants(3) && !Keep::Nothing.wants(0));
+        assert!(Keep::Every(1).wants(5) && !Keep::Nothing.wants(0));
+    }
+
+    /// Frames shown for two or three refreshes each are seen at every refresh of their
+    /// showing, in near-equal shares, whatever K samples one refresh in.
+    #[test]
+    fn kept_samples_do_not_alias_with_held_frames() {
+        for k in 1..=6u32 {
+            for held in 2..=3usize {
+                let mut seen = vec![0; held];
+                for i in (0..held * 72).filter(|&i| Keep::Every(k).wants(i)) {
+                    seen[i % held] += 1;
+                }
+                let (lo, hi) = (*seen.iter().min().unwrap(), *seen.iter().max().unwrap());
+                assert!(
+                    lo > 0 && hi - lo <= 1 + hi / 4,
+                    "K = {k}, frames held {held} refreshes: {seen:?}"
+                );
+            }
+        }
     }
 }
