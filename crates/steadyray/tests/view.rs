@@ -377,7 +377,10 @@ fn playback_shows_recorded_frames() {
     );
     let summary: Value = serde_json::from_str(text(&out.stdout).trim()).unwrap();
     assert_eq!(summary["mode"], "playback");
-    assert_eq!(summary["frames"], 4);
+    // Playback shows the frame due at each redraw, so a redraw late by a frame's 40 ms (a
+    // loaded machine: tests run beside each other) skips one, as on a real display.
+    let shown = summary["frames"].as_u64().unwrap();
+    assert!((3..=4).contains(&shown), "{shown} recorded frames shown");
     // The last frame (i = 3) fills the window outside the HUD.
     let shot = rgba(&shot);
     assert_eq!(shot.get_pixel(630, 350).0, [180, 80, 90, 255]);
