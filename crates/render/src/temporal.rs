@@ -6,6 +6,7 @@
 //! (`render-cpu/src/temporal/`, `temporal.wgsl`) from these rules.
 
 use crate::{RenderSettings, SettingsError};
+use glam::{BVec4A, Vec3, Vec4};
 use steadyray_scene::camera::CameraFrame;
 
 /// The most frames a pixel's history averages while the camera moves (its age is capped
@@ -177,27 +178,27 @@ pub fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// The position, in pixels of a `width` × `height` image, where camera `frame` sees point
-/// `q` (`q[3]` = 1) or direction `q` (`q[3]` = 0, a point at infinity); None when it lies
-/// behind the camera or on its plane.
-pub fn project(frame: &CameraFrame, q: [f32; 4], width: u32, height: u32) -> Option<[f32; 2]> {
-    let e = frame.eye.to_array();
-    let v = if q[3] != 0.0 {
-        [q[0] - e[0], q[1] - e[1], q[2] - e[2]]
-    } else {
-        [q[0], q[1], q[2]]
-    };
-    let z = dot3(v, frame.forward.to_array());
-    // NaN (from a non-finite point) projects nowhere.
-    if z.is_nan() || z <= 0.0 {
-        return None;
-    }
-    let sx = dot3(v, frame.right.to_array()) / z;
-    let sy = dot3(v, frame.true_up.to_array()) / z;
-    Some([
-        (sx / frame.half_width + 1.0) * 0.5 * width as f32,
-        (1.0 - sy / frame.half_height) * 0.5 * height as f32,
-    ])
+/// Where camera `frame` sees four points (lanes of x, y, z, w: a point where w = 1, a
+/// direction, a point at infinity, where w = 0), in pixels of a `size` image: x, y, and
+/// whether each lies in front of the camera (not behind it, on its plane or NaN). Each
+/// lane's arithmetic is the scalar rule's of `docs/temporal.md`, so it rounds alike.
+pub fn project4(frame: &CameraFrame, q: [Vec4; 4], size: (u32, u32)) -> (Vec4, Vec4, BVec4A) {
+    let e = frame.eye;
+    let point = q[3].cmpne(Vec4::ZERO);
+    let v = [
+        Vec4::select(point, q[0] - e.x, q[0]),
+        Vec4::select(point, q[1] - e.y, q[1]),
+        Vec4::select(point, q[2] - e.z, q[2]),
+    ];
+    let dot = |a: Vec3| v[0] * a.x + v[1] * a.y + v[2] * a.z;
+    let z = dot(frame.forward);
+    let sx = dot(frame.right) / z;
+    let sy = dot(frame.true_up) / z;
+    (
+        (sx / frame.half_width + 1.0) * 0.5 * size.0 as f32,
+        (1.0 - sy / frame.half_height) * 0.5 * size.1 as f32,
+        z.cmpgt(Vec4::ZERO),
+    )
 }
 
 /// What a backend needs of the history's past to accumulate one frame.
@@ -283,7 +284,6 @@ impl HistoryClock {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
     use steadyray_scene::Camera;
 
     #[test]
@@ -380,17 +380,19 @@ mod tests {
             (319, 179, 0.99, 0.01),
         ] {
             let d = frame.ray_dir(px, py, u, v, 320, 180);
-            let expect = [px as f32 + u, py as f32 + v];
-            for q in [
-                (frame.eye + 7.5 * d).extend(1.0).to_array(),
-                d.extend(0.0).to_array(),
-            ] {
-                let p = project(&frame, q, 320, 180).unwrap();
-                assert!((p[0] - expect[0]).abs() < 1e-3 && (p[1] - expect[1]).abs() < 1e-3);
+            let point = (frame.eye + 7.5 * d).extend(1.0);
+            let behind = (frame.eye - frame.forward).extend(1.0);
+            // Lanes: the point, the direction, a point behind the eye, a NaN.
+            let lanes = [point, d.extend(0.0), behind, Vec4::NAN];
+            let q = [0, 1, 2, 3].map(|c| Vec4::from_array(lanes.map(|l| l[c])));
+            let (x, y, front) = project4(&frame, q, (320, 180));
+            for lane in 0..2 {
+                assert!(front.test(lane));
+                assert!((x[lane] - (px as f32 + u)).abs() < 1e-3, "{x}");
+                assert!((y[lane] - (py as f32 + v)).abs() < 1e-3, "{y}");
             }
+            assert!(!front.test(2) && !front.test(3), "{front:?}");
         }
-        let behind = (frame.eye - frame.forward).extend(1.0).to_array();
-        assert_eq!(project(&frame, behind, 320, 180), None);
     }
 
     #[test]

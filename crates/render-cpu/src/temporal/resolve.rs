@@ -9,11 +9,11 @@
 //! first; none of that changes a result.
 
 use super::geometry::Geometry;
-use glam::{BVec4A, Vec3, Vec4};
+use glam::Vec4;
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{
     APPROX_FLAG, HISTORY_CAP, ID_MASK, MIRROR_FLAG, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP,
-    STILL_CAP, TemporalFrame, catmull_rom, covering, dot3, floor, landed_from,
+    STILL_CAP, TemporalFrame, catmull_rom, covering, dot3, floor, landed_from, project4,
 };
 use steadyray_scene::camera::CameraFrame;
 
@@ -106,7 +106,7 @@ impl Axis {
     }
 }
 
-/// What [`Prepared::row`] reads besides the frame.
+/// What [`Preparing::row`] reads: the frame, its camera and how its surfaces moved.
 pub(crate) struct Preparing<'a> {
     pub camera: &'a CameraFrame,
     pub frame: &'a TemporalFrame,
@@ -278,27 +278,6 @@ impl Preparing<'_> {
             (before, here) = (here, after);
         }
     }
-}
-
-/// [`project`] of four points (lanes of x, y, z, w) into a history of `size`: x, y and
-/// whether each lies in front of the camera.
-fn project4(frame: &CameraFrame, q: [Vec4; 4], size: (u32, u32)) -> (Vec4, Vec4, BVec4A) {
-    let e = frame.eye;
-    let point = q[3].cmpne(Vec4::ZERO);
-    let v = [
-        Vec4::select(point, q[0] - e.x, q[0]),
-        Vec4::select(point, q[1] - e.y, q[1]),
-        Vec4::select(point, q[2] - e.z, q[2]),
-    ];
-    let dot = |a: Vec3| v[0] * a.x + v[1] * a.y + v[2] * a.z;
-    let z = dot(frame.forward);
-    let sx = dot(frame.right) / z;
-    let sy = dot(frame.true_up) / z;
-    (
-        (sx / frame.half_width + 1.0) * 0.5 * size.0 as f32,
-        (1.0 - sy / frame.half_height) * 0.5 * size.1 as f32,
-        z.cmpgt(Vec4::ZERO),
-    )
 }
 
 /// The distances |q − eye| of four points (lanes of x, y, z).
