@@ -7,7 +7,7 @@ mod resolve;
 pub(crate) use geometry::{Geometry, GeometrySink};
 
 use rayon::prelude::*;
-use resolve::{Axis, Inputs, Prepared, Preparing, Range, RowScratch, Seen};
+use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{HistoryClock, TemporalFrame};
 use steadyray_render::{Image, TemporalSettings};
@@ -117,8 +117,8 @@ impl History {
             .par_chunks_mut(width)
             .zip(self.next_sources.par_chunks_mut(width))
             .enumerate()
-            .for_each_init(RowScratch::default, |scratch, (y, (colours, sources))| {
-                inputs.resolve_row(y as u32, colours, sources, scratch);
+            .for_each(|(y, (colours, sources))| {
+                inputs.resolve_row(y as u32, colours, sources);
             });
         std::mem::swap(&mut self.colour, &mut self.next_colour);
         std::mem::swap(&mut self.sources, &mut self.next_sources);

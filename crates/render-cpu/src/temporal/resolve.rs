@@ -297,61 +297,31 @@ pub(crate) struct Reprojection {
     bilinear: [f32; 4],
 }
 
-/// One history row's working state between the resolve's steps (each a loop over the row:
-/// the sample, the reprojection, the kept taps, the filter, the blend; each step can be
-/// measured on its own), reused across rows.
-#[derive(Debug, Default)]
-pub(crate) struct RowScratch {
-    /// Each pixel's frame sample, and whether it landed in the pixel.
-    sources: Vec<u32>,
-    landed: Vec<bool>,
-    /// Each pixel's reprojection, None where it has no history to look up.
-    reprojections: Vec<Option<Reprojection>>,
-    /// Which of its four taps are kept (bit t for tap t).
-    kept: Vec<u8>,
-    /// Its history (colour, age) before the blend, None where there is none.
-    history: Vec<Option<([f32; 3], f32)>>,
-}
-
 impl Inputs<'_> {
     /// The new history of row `y` (`colours`), and the frame pixel whose record is each
     /// pixel's geometry (`sources`).
-    pub fn resolve_row(
-        &self,
-        y: u32,
-        colours: &mut [[f32; 4]],
-        sources: &mut [u32],
-        scratch: &mut RowScratch,
-    ) {
-        let width = self.size.0 as usize;
+    pub fn resolve_row(&self, y: u32, colours: &mut [[f32; 4]], sources: &mut [u32]) {
+        let width = self.size.0;
         let low_w = self.low_size.0;
         let (cy, ly) = (self.rows.covering[y as usize], self.rows.landed[y as usize]);
-        scratch.sources.clear();
-        scratch.landed.clear();
-        for (&cx, &lx) in self.columns.covering.iter().zip(&self.columns.landed) {
-            let landed = lx != u32::MAX && ly != u32::MAX;
-            let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
-            scratch.sources.push(sy * low_w + sx);
-            scratch.landed.push(landed);
-        }
-        scratch.history.clear();
-        if self.frame.still {
-            let row = &self.history[y as usize * width..][..width];
-            scratch
-                .history
-                .extend(row.iter().map(|h| Some(([h[0], h[1], h[2]], h[3]))));
-        } else if self.frame.previous.is_some() {
-            self.reprojected_row(y, cy, scratch);
-        } else {
-            scratch.history.resize(width, None);
-        }
         let frame = &self.frame;
         for (x, (colour, source)) in colours.iter_mut().zip(sources).enumerate() {
-            *source = scratch.sources[x];
+            let (cx, lx) = (self.columns.covering[x], self.columns.landed[x]);
+            let landed = lx != u32::MAX && ly != u32::MAX;
+            let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
+            *source = sy * low_w + sx;
             let sample = &self.prepared[*source as usize];
             let c = self.low[*source as usize];
             let current_ok = sample.finite;
-            let fresh = scratch.landed[x] && current_ok;
+            let fresh = landed && current_ok;
+            let history = if frame.still {
+                let h = self.history[(y * width) as usize + x];
+                Some(([h[0], h[1], h[2]], h[3]))
+            } else if frame.previous.is_some() {
+                self.reprojected(x as u32, y, (cx, cy), sample)
+            } else {
+                None
+            };
             let approx = sample.tag & APPROX_FLAG != 0;
             let mirrored = sample.tag & MIRROR_FLAG != 0;
             let cap = if frame.still {
@@ -363,7 +333,7 @@ impl Inputs<'_> {
             } else {
                 HISTORY_CAP
             };
-            *colour = match (scratch.history[x], fresh) {
+            *colour = match (history, fresh) {
                 (Some((h, age)), true) => {
                     let a = age.min(cap);
                     let alpha = 1.0 / (a + 1.0);
@@ -382,41 +352,23 @@ impl Inputs<'_> {
         }
     }
 
-    /// The reprojected, filtered and clamped history of row `y` (whose frame row is `cy`)
-    /// of a moving frame, into `scratch.history`: where each pixel's sample was in the
-    /// previous frame, which of the four taps there are still seen around the pixel, and
-    /// their filter.
-    fn reprojected_row(&self, y: u32, cy: u32, scratch: &mut RowScratch) {
-        let low_w = self.low_size.0;
-        scratch.reprojections.clear();
-        scratch.reprojections.extend(
-            scratch
-                .sources
-                .iter()
-                .enumerate()
-                .map(|(x, &source)| self.reproject(x as u32, y, &self.prepared[source as usize])),
-        );
-        scratch.kept.clear();
-        scratch.kept.extend(
-            scratch
-                .reprojections
-                .iter()
-                .zip(&self.columns.covering)
-                .map(|(r, &cx)| r.as_ref().map_or(0, |r| self.kept_taps(cx, cy, r))),
-        );
-        for ((r, &kept), &cx) in scratch
-            .reprojections
-            .iter()
-            .zip(&scratch.kept)
-            .zip(&self.columns.covering)
-        {
-            let Range { lo, hi } = self.ranges[(cy * low_w + cx) as usize];
-            let history = r
-                .as_ref()
-                .and_then(|r| self.filtered(r, kept))
-                .map(|(colour, age)| ([0, 1, 2].map(|i| colour[i].max(lo[i]).min(hi[i])), age));
-            scratch.history.push(history);
-        }
+    /// The reprojected, filtered and clamped history of pixel (x, y) of a moving frame,
+    /// whose sample is `sample` and whose neighbourhood is around frame pixel `centre`:
+    /// where the sample was in the previous frame, which of the four taps there are still
+    /// seen around the pixel, and their filter clamped to the neighbourhood's range.
+    #[inline]
+    fn reprojected(
+        &self,
+        x: u32,
+        y: u32,
+        (cx, cy): (u32, u32),
+        sample: &Prepared,
+    ) -> Option<([f32; 3], f32)> {
+        let r = self.reproject(x, y, sample)?;
+        let kept = self.kept_taps(cx, cy, &r);
+        let (colour, age) = self.filtered(&r, kept)?;
+        let Range { lo, hi } = self.ranges[(cy * self.low_size.0 + cx) as usize];
+        Some(([0, 1, 2].map(|i| colour[i].max(lo[i]).min(hi[i])), age))
     }
 
     /// Where the history of pixel (x, y), whose frame sample is `sample`, lies in the
