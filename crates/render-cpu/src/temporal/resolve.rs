@@ -246,11 +246,10 @@ impl Preparing<'_> {
     /// is −0, a sum from +0 of non-negative terms, so the order cannot change a bit).
     fn ranges(&self, y: u32, ranges: &mut [Range]) {
         let (low_w, low_h) = (self.low_size.0 as usize, self.low_size.1);
-        let rows = (y.saturating_sub(1)..=(y + 1).min(low_h - 1))
-            .map(|ny| &self.low[ny as usize * low_w..][..low_w]);
-        let rows: Vec<&[[f32; 3]]> = rows.collect();
+        let (first, last) = (y.saturating_sub(1), (y + 1).min(low_h - 1));
+        let rows = &self.low[first as usize * low_w..(last as usize + 1) * low_w];
         let column = |x: usize| {
-            rows.iter()
+            rows.chunks_exact(low_w)
                 .fold((Vec4::INFINITY, Vec4::NEG_INFINITY), |(lo, hi), row| {
                     let [r, g, b] = row[x];
                     let c = Vec4::new(r, g, b, 0.0);
