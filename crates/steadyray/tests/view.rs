@@ -155,6 +155,19 @@ fn rgba(path: &Path) -> image::RgbaImage {
 const WINDOW: (u32, u32) = (640, 360);
 const PIXEL: u32 = 4;
 
+/// `view`'s arguments for that window, 30 frames long.
+fn window_args() -> Vec<String> {
+    [
+        ("--width", WINDOW.0),
+        ("--height", WINDOW.1),
+        ("--pixel-size", PIXEL),
+        ("--frames", 30),
+    ]
+    .iter()
+    .flat_map(|(key, value)| [key.to_string(), value.to_string()])
+    .collect()
+}
+
 /// Runs `view --frames 30 --screenshot` on `backend` and checks the screenshot against a
 /// `render` of the same view; with `temporal`, both accumulate the 30 frames of the still
 /// view (`view --temporal`, `render --temporal 30`) and must agree as well.
@@ -166,8 +179,7 @@ fn window_matches_render(backend: &str, temporal: bool) {
     let dir = scratch(&format!("{backend}-{temporal}"));
     let shot = dir.join("view.png");
     let reference = dir.join("render.png");
-    let (w, h) = (WINDOW.0.to_string(), WINDOW.1.to_string());
-    let pixel = PIXEL.to_string();
+    let window = window_args();
     let mut view_args = vec![
         "view",
         "--scene",
@@ -180,17 +192,10 @@ fn window_matches_render(backend: &str, temporal: bool) {
         "1",
         "--depth-max",
         "6",
-        "--width",
-        &w,
-        "--height",
-        &h,
-        "--pixel-size",
-        &pixel,
-        "--frames",
-        "30",
         "--screenshot",
         shot.to_str().unwrap(),
     ];
+    view_args.extend(window.iter().map(String::as_str));
     if temporal {
         view_args.push("--temporal");
     }
@@ -394,26 +399,10 @@ fn the_band_follows_the_display() {
         Ok(x) => x,
         Err(why) => skip!("no X server for the window test: {why}"),
     };
-    let (w, h) = (WINDOW.0.to_string(), WINDOW.1.to_string());
-    let pixel = PIXEL.to_string();
-    let out = run(
-        Some(&xvfb.display),
-        &[
-            "view",
-            "--backend",
-            "cpu",
-            "--band",
-            "refresh:2",
-            "--width",
-            &w,
-            "--height",
-            &h,
-            "--pixel-size",
-            &pixel,
-            "--frames",
-            "30",
-        ],
-    );
+    let window = window_args();
+    let mut args = vec!["view", "--backend", "cpu", "--band", "refresh:2"];
+    args.extend(window.iter().map(String::as_str));
+    let out = run(Some(&xvfb.display), &args);
     let stderr = text(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
     if !out.status.success() && stderr.contains("no GPU adapter") {
