@@ -259,10 +259,12 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let fixed = &summary["controllers"][0];
-    assert_eq!(fixed["displayed_samples"], 3, "refreshes 0, 2 and 4");
+    assert_eq!(fixed["displayed_samples"], 3, "refreshes 0, 3 and 4");
     let flip = fixed["displayed_flip_mean"].as_f64().unwrap();
     assert!(flip > 0.0 && flip < 0.5, "{flip}");
     assert!(fixed["frame_flip_mean"].as_f64().unwrap() <= flip + 1e-9);
+    let age_flip = fixed["age_flip_mean"].as_f64().unwrap();
+    assert!((0.0..0.5).contains(&age_flip), "{age_flip}");
     let second = run();
     assert!(second.contains("reusing the references"), "{second}");
     let again: Value =

@@ -21,6 +21,9 @@ pub fn time_key(t_s: f64) -> i64 {
 pub struct TimedReferences {
     quality: Quality,
     images: BTreeMap<i64, Rgb8Image>,
+    /// FLIP of the world at one time against the world at another (keys: then, now),
+    /// shared by every run that showed a frame of that time at that refresh.
+    age_flips: BTreeMap<(i64, i64), f64>,
 }
 
 impl TimedReferences {
@@ -29,6 +32,7 @@ impl TimedReferences {
         Self {
             quality,
             images: BTreeMap::new(),
+            age_flips: BTreeMap::new(),
         }
     }
 
@@ -45,6 +49,29 @@ impl TimedReferences {
     /// Adds a reference made elsewhere (e.g. read from a video folder).
     pub fn insert(&mut self, t_s: f64, image: Rgb8Image) {
         self.images.insert(time_key(t_s), image);
+    }
+
+    /// The reference at `t_s`, or an error naming the missing time.
+    fn at(&self, t_s: f64) -> Result<&Rgb8Image> {
+        self.get(t_s)
+            .with_context(|| format!("no reference of the world at {t_s:.4} s"))
+    }
+
+    /// Mean FLIP of the world at `then_s` shown at `now_s` (the reference at `now_s` is the
+    /// truth): what a perfect picture costs for its age alone.
+    pub fn age_flip(&mut self, then_s: f64, now_s: f64, pixels_per_degree: f32) -> Result<f64> {
+        let key = (time_key(then_s), time_key(now_s));
+        if key.0 == key.1 {
+            return Ok(0.0);
+        }
+        if let Some(&flip) = self.age_flips.get(&key) {
+            return Ok(flip);
+        }
+        let flip =
+            steadyray_quality::flip_at(self.at(now_s)?, self.at(then_s)?, pixels_per_degree)?
+                .mean();
+        self.age_flips.insert(key, flip);
+        Ok(flip)
     }
 
     /// Renders the references of those `times` not held yet; `progress` is told of each.
@@ -134,6 +161,10 @@ pub struct DisplayedQuality {
     /// Mean FLIP of the screen against the world at the time its frame shows: the picture's
     /// own error, without its age.
     pub frame_flip_mean: f64,
+    /// Mean FLIP of the world at the time its frame shows against the world at the refresh
+    /// (two references): what the screen's age costs a perfect picture, the part of
+    /// `flip_mean` no better picture at the same frame times can remove.
+    pub age_flip_mean: f64,
     /// Mean age of the world on screen, ms (refresh time − the frame's world time).
     pub age_ms_mean: f64,
 }
@@ -143,23 +174,20 @@ pub struct DisplayedQuality {
 pub fn measure(
     run: &DisplayRun,
     samples: &[ScreenSample],
-    references: &TimedReferences,
+    references: &mut TimedReferences,
     size: (u32, u32),
     pixels_per_degree: f32,
 ) -> Result<Option<DisplayedQuality>> {
-    let reference = |t_s: f64| {
-        references
-            .get(t_s)
-            .with_context(|| format!("no reference of the world at {t_s:.4} s"))
-    };
-    let (mut displayed, mut own, mut age) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut displayed, mut own, mut age_flip, mut age) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for s in samples {
         let screen = screen_picture(run, s.frame, size)?;
         let at = |t_s| -> Result<f64> {
-            Ok(steadyray_quality::flip_at(reference(t_s)?, &screen, pixels_per_degree)?.mean())
+            Ok(steadyray_quality::flip_at(references.at(t_s)?, &screen, pixels_per_degree)?.mean())
         };
         displayed.push(at(s.time_s)?);
         own.push(at(s.world_s)?);
+        age_flip.push(references.age_flip(s.world_s, s.time_s, pixels_per_degree)?);
         age.push(1000.0 * (s.time_s - s.world_s));
     }
     Ok(mean(&displayed).map(|flip_mean| DisplayedQuality {
@@ -167,6 +195,7 @@ pub fn measure(
         flip_mean,
         flip_p95: quantile(&displayed, 0.95).unwrap_or(flip_mean),
         frame_flip_mean: mean(&own).unwrap_or(0.0),
+        age_flip_mean: mean(&age_flip).unwrap_or(0.0),
         age_ms_mean: mean(&age).unwrap_or(0.0),
     }))
 }
@@ -227,7 +256,8 @@ mod tests {
         let (run, references) = screen(lag, speed);
         let samples = screen_samples(&run, 1000.0 * P_S, |_| true);
         assert_eq!(samples.len(), 12);
-        measure(&run, &samples, &references, (64, 32), 12.6)
+        let mut references = references;
+        measure(&run, &samples, &mut references, (64, 32), 12.6)
             .unwrap()
             .unwrap()
     }
@@ -236,8 +266,8 @@ mod tests {
     fn frames_of_the_reference_shown_on_time_score_zero() {
         let q = displayed(0.0, 120.0);
         assert_eq!(
-            (q.flip_mean, q.flip_p95, q.frame_flip_mean),
-            (0.0, 0.0, 0.0)
+            (q.flip_mean, q.flip_p95, q.frame_flip_mean, q.age_flip_mean),
+            (0.0, 0.0, 0.0, 0.0)
         );
         assert!(q.age_ms_mean.abs() < 1e-6);
     }
@@ -250,6 +280,8 @@ mod tests {
         assert!(fast.flip_mean > 1.5 * slow.flip_mean, "{slow:?} {fast:?}");
         // Each frame is perfect for its own time: the error is its age alone.
         assert_eq!(fast.frame_flip_mean, 0.0);
+        assert_eq!(fast.age_flip_mean, fast.flip_mean);
+        assert_eq!(slow.age_flip_mean, slow.flip_mean);
         // Refreshes 1 to 11 show a frame one refresh old; refresh 0 the warm-up frame, on time.
         assert!((fast.age_ms_mean - 1000.0 * P_S * 11.0 / 12.0).abs() < 1e-6);
     }
@@ -257,19 +289,19 @@ mod tests {
     #[test]
     fn stale_frames_of_a_static_camera_score_zero() {
         let q = displayed(2.0, 0.0);
-        assert_eq!(q.flip_mean, 0.0);
+        assert_eq!((q.flip_mean, q.age_flip_mean), (0.0, 0.0));
         assert!(q.age_ms_mean > 0.0);
     }
 
     #[test]
     fn a_missing_reference_or_picture_is_an_error() {
-        let (mut run, references) = screen(0.0, 60.0);
+        let (mut run, mut references) = screen(0.0, 60.0);
         let samples = screen_samples(&run, 1000.0 * P_S, |_| true);
-        let empty = TimedReferences::new(references.quality());
-        let err = measure(&run, &samples, &empty, (64, 32), 12.6).unwrap_err();
+        let mut empty = TimedReferences::new(references.quality());
+        let err = measure(&run, &samples, &mut empty, (64, 32), 12.6).unwrap_err();
         assert!(err.to_string().contains("no reference"), "{err}");
         run.pictures.remove(&Some(3));
-        let err = measure(&run, &samples, &references, (64, 32), 12.6).unwrap_err();
+        let err = measure(&run, &samples, &mut references, (64, 32), 12.6).unwrap_err();
         assert!(err.to_string().contains("not kept"), "{err}");
     }
 }

@@ -660,7 +660,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 if let Some(shown) = run.display.as_mut() {
                     let samples = screen_samples(shown, period, |i| measured.wants(i));
                     shown.quality =
-                        displayed::measure(shown, &samples, &references, (width, height), ppd)?;
+                        displayed::measure(shown, &samples, &mut references, (width, height), ppd)?;
                     shown.pictures.clear();
                 }
             }

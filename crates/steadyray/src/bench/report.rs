@@ -123,6 +123,9 @@ struct DisplayedEntry {
     displayed_flip_p95: f64,
     /// Mean FLIP of the screen against the world at its frame's own time.
     frame_flip_mean: f64,
+    /// Mean FLIP of the world at its frame's time against the world at the refresh: what
+    /// the screen's age alone costs.
+    age_flip_mean: f64,
     /// Mean age of the world on screen at the sampled refreshes, ms.
     screen_age_ms_mean: f64,
     /// Refreshes measured.
@@ -171,6 +174,7 @@ pub fn write_summary(
                         displayed_flip_mean: q.flip_mean,
                         displayed_flip_p95: q.flip_p95,
                         frame_flip_mean: q.frame_flip_mean,
+                        age_flip_mean: q.age_flip_mean,
                         screen_age_ms_mean: q.age_ms_mean,
                         displayed_samples: q.samples,
                     }),

@@ -523,7 +523,7 @@ impl Stimulus {
             ));
             let run = stimulus_run(&mut source, display, k, ladder.points[p].quality())?;
             let samples = screen_samples(&run, period_ms, |_| true);
-            let shown = measure(&run, &samples, &references, size, ppd)?
+            let shown = measure(&run, &samples, &mut references, size, ppd)?
                 .context("a stimulus showed no refresh")?;
             flips.insert(name.clone(), shown.flip_mean);
             if let Some(folder) = folder {

@@ -188,10 +188,11 @@ fn plot_points(summary: &Value) -> Result<Vec<JodPoint>> {
 }
 
 /// The figures `agree` ranks, and whether a higher value should mean a better picture.
-const RANKED: [(&str, bool); 8] = [
+const RANKED: [(&str, bool); 9] = [
     ("displayed_flip_mean", false),
     ("displayed_flip_p95", false),
     ("frame_flip_mean", false),
+    ("age_flip_mean", false),
     ("screen_age_ms_mean", false),
     ("displayed_fps", true),
     ("repeated_pct", false),
