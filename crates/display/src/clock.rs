@@ -9,18 +9,29 @@
 //! frame is at least one refresh old when it appears, and the step of the world between two
 //! frames shown (s_{j+1} − s_j = v_j − v_{j−1}) is the interval *before* the one the viewer
 //! sees (v_{j+1} − v_j): each change of the frame rate shows as a jump in the motion. With the
-//! prediction (the last frame's render and hand-over time, rounded up to the refresh that
-//! would show it) the steps match whenever the prediction holds, which a controller holding
-//! its band makes the common case; VR runtimes render at a predicted display time for the
-//! same reason.
+//! prediction (the median render and hand-over time of the last [`PREDICTION_FRAMES`]
+//! frames, rounded up to the refresh that would show it) the steps match whenever the
+//! prediction holds, which a controller holding its band makes the common case; VR runtimes
+//! render at a predicted display time for the same reason.
+//!
+//! Why the median of several frames and not the last frame's time: a controller answers a
+//! slow frame with a cut, so the frame after it is fast, and a prediction from the slow frame
+//! is then a refresh or more too late: that frame shows the world ahead of its refresh, and
+//! the next one, predicted from a fast frame, renders the same world time again (a stop, then
+//! a jump). On the corridor at one 60 Hz refresh a frame, one frame in seven or eight did so.
+//! The median lets one slow frame pass and still follows a lasting change within a few frames.
 
 use crate::config::DisplayConfig;
 use crate::error::DisplayError;
 use crate::model::{Display, FrameTimes};
 use crate::timeline::Timeline;
+use std::collections::VecDeque;
 
 /// The longest run accepted, s (a bound on the timeline's size).
 pub const MAX_DURATION_S: f64 = 3600.0;
+
+/// The frames whose median render and hand-over time predicts the next frame's.
+pub const PREDICTION_FRAMES: usize = 5;
 
 /// The next frame to render under the real clock.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,7 +56,8 @@ impl FrameSlot {
 pub struct RealClock {
     display: Display,
     duration_ms: f64,
-    expected_busy_ms: f64,
+    /// The render and hand-over times of the last frames (at most [`PREDICTION_FRAMES`]).
+    recent_busy_ms: VecDeque<f64>,
 }
 
 impl RealClock {
@@ -57,15 +69,31 @@ impl RealClock {
         Ok(Self {
             display: Display::new(config),
             duration_ms: duration_s * 1000.0,
-            expected_busy_ms: 0.0,
+            recent_busy_ms: VecDeque::with_capacity(PREDICTION_FRAMES),
         })
     }
 
-    /// Sets the render and hand-over time the next prediction assumes (e.g. from warm-up
-    /// frames); each presented frame sets it to its own afterwards.
+    /// Adds the render and hand-over time of a frame rendered outside the run (a warm-up
+    /// frame) to those the prediction takes its median from; each presented frame adds its
+    /// own. A NaN, infinite or negative time is ignored.
     pub fn expect(&mut self, busy_ms: f64) {
         if busy_ms.is_finite() && busy_ms >= 0.0 {
-            self.expected_busy_ms = busy_ms;
+            if self.recent_busy_ms.len() == PREDICTION_FRAMES {
+                self.recent_busy_ms.pop_front();
+            }
+            self.recent_busy_ms.push_back(busy_ms);
+        }
+    }
+
+    /// The render and hand-over time the next frame is predicted to take: the median of the
+    /// recent frames' (the mean of the middle two of an even count), 0 before any.
+    pub fn predicted_busy_ms(&self) -> f64 {
+        let mut times: Vec<f64> = self.recent_busy_ms.iter().copied().collect();
+        times.sort_by(f64::total_cmp);
+        match times.len() {
+            0 => 0.0,
+            n if n % 2 == 1 => times[n / 2],
+            n => 0.5 * (times[n / 2 - 1] + times[n / 2]),
         }
     }
 
@@ -80,7 +108,7 @@ impl RealClock {
         (start_ms < self.duration_ms).then(|| FrameSlot {
             index: self.display.frames().len(),
             start_ms,
-            show_ms: self.display.visible_after(self.expected_busy_ms),
+            show_ms: self.display.visible_after(self.predicted_busy_ms()),
         })
     }
 
@@ -93,7 +121,7 @@ impl RealClock {
             });
         }
         let frame = self.display.present(tp_ms, hand_over_ms)?;
-        self.expected_busy_ms = tp_ms + hand_over_ms;
+        self.expect(tp_ms + hand_over_ms);
         Ok(frame)
     }
 

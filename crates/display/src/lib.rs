@@ -35,7 +35,7 @@ pub mod timeline;
 pub mod viewing;
 
 pub use aligned::aligned_band;
-pub use clock::{FrameSlot, MAX_DURATION_S, RealClock};
+pub use clock::{FrameSlot, MAX_DURATION_S, PREDICTION_FRAMES, RealClock};
 pub use config::{DisplayConfig, MAX_REFRESH_HZ, SyncMode, VrrRange};
 pub use error::DisplayError;
 pub use figures::DisplayFigures;

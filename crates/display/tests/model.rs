@@ -2,8 +2,8 @@
 
 use proptest::prelude::*;
 use steadyray_display::{
-    DisplayConfig, DisplayError, DisplayFigures, FrameTimes, RealClock, SyncMode, Timeline,
-    VrrRange,
+    DisplayConfig, DisplayError, DisplayFigures, FrameSlot, FrameTimes, PREDICTION_FRAMES,
+    RealClock, SyncMode, Timeline, VrrRange,
 };
 
 /// 60 Hz: the refresh period P, ms.
@@ -14,21 +14,42 @@ fn close(a: f64, b: f64) -> bool {
 }
 
 /// Runs `duration_s` of frames taking `times[j % len]` (Tp, hand-over) on `config`; checks
-/// that each frame's predicted show time is when it was shown whenever its busy time equals
-/// the previous frame's.
+/// that each frame's predicted show time is when it was shown whenever its busy time is the
+/// predicted one.
 fn run(config: DisplayConfig, duration_s: f64, times: &[(f64, f64)]) -> Timeline {
+    run_slots(config, duration_s, |j| times[j % times.len()]).0
+}
+
+/// Runs `duration_s` of frames, frame j taking `time(j)` (Tp, hand-over), on `config`;
+/// returns the timeline and each frame's slot, with the check of [`run`].
+fn run_slots(
+    config: DisplayConfig,
+    duration_s: f64,
+    time: impl Fn(usize) -> (f64, f64),
+) -> (Timeline, Vec<FrameSlot>) {
     let mut clock = RealClock::new(config, duration_s).unwrap();
-    let mut previous = None;
+    let mut slots = Vec::new();
     while let Some(slot) = clock.next_frame() {
-        let (tp, hand_over) = times[slot.index % times.len()];
+        let (tp, hand_over) = time(slot.index);
+        let predicted = clock.predicted_busy_ms();
         let frame = clock.present(tp, hand_over).unwrap();
         assert!(close(frame.start_ms, slot.start_ms));
-        if previous == Some(tp + hand_over) {
+        if close(predicted, tp + hand_over) {
             assert!(close(frame.visible_ms, slot.show_ms), "{slot:?} {frame:?}");
         }
-        previous = Some(tp + hand_over);
+        slots.push(slot);
     }
-    clock.finish()
+    (clock.finish(), slots)
+}
+
+/// How many refreshes after the world time it renders each frame was shown (negative: ahead).
+fn lateness(timeline: &Timeline, slots: &[FrameSlot]) -> Vec<i64> {
+    timeline
+        .frames()
+        .iter()
+        .zip(slots)
+        .map(|(f, s)| ((f.visible_ms - s.show_ms) / P).round() as i64)
+        .collect()
 }
 
 fn vsync(hz: f64) -> DisplayConfig {
@@ -103,6 +124,59 @@ fn latency_and_pacing_equal_the_hand_computed_figures() {
     assert!(close(f.latency_ms_p95.unwrap(), 1.85 * P));
     // Intervals 2P, P, P: standard deviation P·√2/3.
     assert!(close(f.pacing_std_ms.unwrap(), P * 2f64.sqrt() / 3.0));
+}
+
+#[test]
+fn one_slow_frame_leaves_the_next_frames_on_time() {
+    // 10 ms frames, one of 25 ms (frame 6): it misses its refresh and is shown one late; the
+    // frames after it are predicted from the median, not from it, so each is shown at the
+    // world time it rendered, and no world time is rendered twice.
+    let (t, slots) = run_slots(vsync(60.0), 0.5, |j| {
+        (if j == 6 { 25.0 } else { 10.0 }, 0.0)
+    });
+    let late = lateness(&t, &slots);
+    assert_eq!(late[6], 1, "{late:?}");
+    assert!(
+        late.iter().enumerate().all(|(j, &l)| j == 6 || l == 0),
+        "{late:?}"
+    );
+    assert!(slots.windows(2).all(|w| w[1].show_ms > w[0].show_ms));
+}
+
+#[test]
+fn a_lasting_slowdown_is_followed_within_a_few_frames() {
+    // 10 ms frames, then 25 ms from frame 6 on: late until most of the last five frames are
+    // slow, then on time again.
+    let (t, slots) = run_slots(vsync(60.0), 1.0, |j| (if j < 6 { 10.0 } else { 25.0 }, 0.0));
+    let late = lateness(&t, &slots);
+    let settled = 6 + PREDICTION_FRAMES / 2 + 1;
+    assert!(late[6..settled].iter().all(|&l| l == 1), "{late:?}");
+    assert!(
+        late.iter()
+            .enumerate()
+            .all(|(j, &l)| (6..settled).contains(&j) || l == 0),
+        "{late:?}"
+    );
+}
+
+#[test]
+fn the_prediction_is_the_median_of_the_recent_frames() {
+    let mut clock = RealClock::new(vsync(60.0), 1.0).unwrap();
+    assert_eq!(clock.predicted_busy_ms(), 0.0);
+    clock.expect(8.0);
+    clock.expect(f64::NAN);
+    clock.expect(-1.0);
+    assert_eq!(clock.predicted_busy_ms(), 8.0);
+    clock.expect(12.0);
+    assert_eq!(clock.predicted_busy_ms(), 10.0);
+    for busy in [30.0, 9.0, 11.0] {
+        clock.present(busy, 0.0).unwrap();
+    }
+    // 8, 12, 30, 9, 11.
+    assert_eq!(clock.predicted_busy_ms(), 11.0);
+    clock.present(40.0, 0.0).unwrap();
+    // The oldest (8) leaves: 12, 30, 9, 11, 40.
+    assert_eq!(clock.predicted_busy_ms(), 12.0);
 }
 
 #[test]
