@@ -2,9 +2,15 @@
 //!
 //! Rays scale with pixels · S (pixels ∝ scale²). Per eye sample, level k carries
 //! n_k / (pixels · S) rays; levels up to the frame's depth R are measured, deeper levels are
-//! extrapolated with the decay ratio ρ = n_R / n_(R−1) observed between the two deepest
-//! levels (fewer rays reach each deeper level; ρ is clamped to [0, 1] because one branch per
-//! sample never multiplies rays). Shadow rays are taken proportional to the other rays.
+//! extrapolated with the decay ratio ρ = (n_1 + … + n_R) / (n_0 + … + n_(R−1)): the measured
+//! levels' ratio to the level before, averaged with their rays as weights (fewer rays reach
+//! each deeper level; ρ is clamped to [0, 1] because one branch per sample never multiplies
+//! rays). Not the ratio of the two deepest levels alone: on a view whose rays die out before
+//! R those are a handful of rays or none (one ray, then none, reads as ρ = 0), and a frame at
+//! R = 0, which measures no ratio, carries the last one; carried as 0, no level beyond 0
+//! looked reached, and R was never raised again (`predictive` at a one-refresh band with
+//! the temporal mode, cut to R = 0 by one slow frame, held it for the rest of the run).
+//! Shadow rays are taken proportional to the other rays.
 
 use crate::quality::Quality;
 use crate::report::FrameReport;
@@ -39,9 +45,10 @@ impl RayModel {
             .collect();
         let path_rays: u64 = report.rays_per_depth.iter().sum();
         let n = report.rays_per_depth.len();
-        let decay = if n >= 2 && report.rays_per_depth[n - 2] > 0 {
-            (report.rays_per_depth[n - 1] as f64 / report.rays_per_depth[n - 2] as f64)
-                .clamp(0.0, 1.0)
+        let shallow: u64 = report.rays_per_depth[..n.saturating_sub(1)].iter().sum();
+        let decay = if n >= 2 && shallow > 0 {
+            let deep: u64 = report.rays_per_depth[1..].iter().sum();
+            (deep as f64 / shallow as f64).clamp(0.0, 1.0)
         } else {
             last_decay
         };
@@ -133,5 +140,28 @@ mod tests {
         assert!((m.reach(4) - 0.0625).abs() < 1e-12);
         assert_eq!(m.useful_depth(0.1, 0, 16), 3);
         assert_eq!(m.useful_depth(0.9, 1, 16), 1);
+    }
+
+    #[test]
+    fn rays_that_die_out_before_the_depth_do_not_read_as_no_decay() {
+        // Eye rays 10000; 3000, 900 and 270 reach levels 1 to 3, one ray level 4, none 5.
+        let mut r = report();
+        r.rays_per_depth = vec![10_000, 3000, 900, 270, 1, 0];
+        r.quality = Quality::new(1.0, 5, 1.0);
+        r.pixels = 10_000;
+        let m = RayModel::from_report(&r, DEFAULT_DECAY);
+        assert!(
+            (m.decay() - 4171.0 / 14171.0).abs() < 1e-12,
+            "{}",
+            m.decay()
+        );
+        // A frame at R = 0 carries it, so levels beyond 0 still look reached.
+        let mut flat = report();
+        flat.rays_per_depth = vec![10_000];
+        flat.quality = Quality::new(1.0, 0, 1.0);
+        flat.pixels = 10_000;
+        let at_zero = RayModel::from_report(&flat, m.decay());
+        assert_eq!(at_zero.decay(), m.decay());
+        assert_eq!(at_zero.useful_depth(0.02, 0, 16), 3);
     }
 }

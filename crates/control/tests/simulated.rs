@@ -465,3 +465,47 @@ fn an_r_cut_on_a_shallow_view_is_traded_back_on_a_deep_one() {
         );
     }
 }
+
+/// A pass-sized fixed cost (8 ms), a shallow view whose rays die out before the depth (a
+/// level reached by some rays, the next by none), a slow spell of four frames at twice the
+/// time, then a deep view (rays bouncing between the mirrors). The spell cuts to the floor,
+/// R = 0 included; the frames at R = 0 measure no level ratio and carry the last one. Read
+/// from the two deepest levels alone that ratio was 0 (some rays, then none), no level
+/// beyond 0 looked reached, and R stayed 0 on the deep view for good. Read from all measured
+/// levels it is the view's, and R comes back as the view deepens.
+#[test]
+fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
+    let shallow = Load {
+        reach: vec![1.0, 0.3, 0.09, 0.027, 0.0081],
+        shadow_eye: 1.0,
+        shadow_bounce: 1.0,
+        cost_factor: 1.0,
+    };
+    let deep = corridor_load(0.0);
+    let loads: Vec<Load> = (0..300)
+        .map(|f| {
+            if f < 60 {
+                shallow.clone()
+            } else {
+                deep.clone()
+            }
+        })
+        .collect();
+    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Frames(loads));
+    model.fixed_ms = 8.0;
+    // The deep view at R = 16 fits the band's centre at about 0.6 of the scale.
+    let start = Quality::new(1.0, 5, 1.0);
+    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.36;
+    let full = Quality::new(1.0, 16, 1.0);
+    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &deep) - model.fixed_ms);
+    model.spike_factor = 2.8;
+    model.spike_frames = vec![30, 31, 32, 33];
+    let records = run(controller("predictive", start).as_mut(), &model, 300);
+    let depths: Vec<u32> = records.iter().map(|r| r.quality.depth).collect();
+    println!("R per frame: {depths:?}");
+    assert!(
+        depths[30..60].contains(&0),
+        "the spell cuts R to 0: {depths:?}"
+    );
+    assert!(depths[299] >= 8, "{depths:?}");
+}
