@@ -651,6 +651,7 @@ mod tests {
             tp_ms: 1.0 + total as f64 * 1e-6,
             rays_per_depth: rays,
             shadow_rays: 0,
+            rays_stopped: None,
             pixels,
             quality: q,
             speed_deg_s: 0.0,

@@ -1,8 +1,10 @@
 //! Predicts the rays a candidate quality would trace, from the last frame's rays per depth.
 //!
 //! Rays scale with pixels · S (pixels ∝ scale²). Per eye sample, level k carries
-//! n_k / (pixels · S) rays; levels up to the frame's depth R are measured, deeper levels are
-//! extrapolated with the decay ratio ρ = (n_1 + … + n_R) / (n_0 + … + n_(R−1)): the measured
+//! n_k / (pixels · S) rays; levels up to the frame's depth R are measured, and level R + 1
+//! too when the renderer counts the chains its depth limit stopped at a mirror or dielectric
+//! ([`FrameReport::rays_stopped`]: exactly the rays level R + 1 would trace); deeper levels
+//! are extrapolated with the decay ratio ρ = (n_1 + … + n_R) / (n_0 + … + n_(R−1)): the measured
 //! levels' ratio to the level before, averaged with their rays as weights (fewer rays reach
 //! each deeper level; ρ is clamped to [0, 1] because one branch per sample never multiplies
 //! rays). Not the ratio of the two deepest levels alone: on a view whose rays die out before
@@ -38,16 +40,19 @@ impl RayModel {
         let q = report.quality;
         let pixels = report.pixels as f64;
         let samples = pixels * f64::from(q.spp.max(1.0));
-        let per_sample: Vec<f64> = report
+        // The measured levels, and the next one when the renderer counted it.
+        let levels: Vec<u64> = report
             .rays_per_depth
             .iter()
-            .map(|&n| n as f64 / samples)
+            .copied()
+            .chain(report.rays_stopped)
             .collect();
+        let per_sample: Vec<f64> = levels.iter().map(|&n| n as f64 / samples).collect();
         let path_rays: u64 = report.rays_per_depth.iter().sum();
-        let n = report.rays_per_depth.len();
-        let shallow: u64 = report.rays_per_depth[..n.saturating_sub(1)].iter().sum();
+        let n = levels.len();
+        let shallow: u64 = levels[..n.saturating_sub(1)].iter().sum();
         let decay = if n >= 2 && shallow > 0 {
-            let deep: u64 = report.rays_per_depth[1..].iter().sum();
+            let deep: u64 = levels[1..].iter().sum();
             (deep as f64 / shallow as f64).clamp(0.0, 1.0)
         } else {
             last_decay
@@ -66,7 +71,7 @@ impl RayModel {
         self.decay
     }
 
-    /// The deepest measured level.
+    /// The deepest measured level (R, or R + 1 when the frame counted the stopped chains).
     pub fn measured_depth(&self) -> u32 {
         self.per_sample.len().saturating_sub(1) as u32
     }
@@ -115,6 +120,7 @@ mod tests {
             tp_ms: 10.0,
             // 1000 pixels at scale 0.5, S = 2: 2000 eye rays, half go one level deeper.
             rays_per_depth: vec![2000, 1000, 500],
+            rays_stopped: None,
             shadow_rays: 350,
             pixels: 1000,
             quality: Quality::new(2.0, 2, 0.5),

@@ -18,6 +18,11 @@ pub struct FrameReport {
     pub rays_per_depth: Vec<u64>,
     /// Shadow rays toward the lights.
     pub shadow_rays: u64,
+    /// Chains the depth limit ended at a mirror or a dielectric: the rays level R + 1 would
+    /// trace, not traced (`None` when the renderer does not count them). With it the
+    /// `predictive` controller knows how far the next level reaches instead of guessing.
+    #[serde(default)]
+    pub rays_stopped: Option<u64>,
     /// Pixels rendered (after the resolution scale).
     pub pixels: u64,
     /// The quality this frame was rendered with.
@@ -88,6 +93,7 @@ mod tests {
         FrameReport {
             tp_ms,
             rays_per_depth: vec![100, 50],
+            rays_stopped: None,
             shadow_rays: 30,
             pixels: 100,
             quality: Quality::new(1.0, 1, 1.0),

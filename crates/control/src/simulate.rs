@@ -53,11 +53,14 @@ impl Load {
         self
     }
 
+    /// Rays at level k for `eye` eye rays.
+    fn level(&self, eye: f64, k: usize) -> u64 {
+        (eye * self.reach.get(k).copied().unwrap_or(0.0)).round() as u64
+    }
+
     /// Rays per depth and shadow rays for `eye` eye rays and depth R.
     fn rays(&self, eye: f64, depth: u32) -> (Vec<u64>, u64) {
-        let per_depth: Vec<u64> = (0..=depth as usize)
-            .map(|k| (eye * self.reach.get(k).copied().unwrap_or(0.0)).round() as u64)
-            .collect();
+        let per_depth: Vec<u64> = (0..=depth as usize).map(|k| self.level(eye, k)).collect();
         let secondary: u64 = per_depth.iter().skip(1).sum();
         let shadow = per_depth[0] as f64 * self.shadow_eye + secondary as f64 * self.shadow_bounce;
         (per_depth, shadow.round() as u64)
@@ -399,7 +402,8 @@ impl SimRenderer {
     /// frame by frame (e.g. [`corridor_load`] at the yaw of a time).
     pub fn render_load(&mut self, frame: usize, load: &Load, q: Quality) -> FrameReport {
         let m = &self.model;
-        let (rays_per_depth, shadow_rays) = load.rays(m.eye_rays(&q), q.depth);
+        let eye = m.eye_rays(&q);
+        let (rays_per_depth, shadow_rays) = load.rays(eye, q.depth);
         let total = rays_per_depth.iter().sum::<u64>() + shadow_rays;
         let ideal = m.fixed_ms + m.ns_per_ray * 1e-6 * total as f64 * load.cost_factor;
         let noise = (1.0 + m.noise * self.rng.normal()).max(0.1);
@@ -420,6 +424,7 @@ impl SimRenderer {
             tp_ms,
             rays_per_depth,
             shadow_rays,
+            rays_stopped: Some(load.level(eye, q.depth as usize + 1)),
             pixels: m.pixels(&q),
             quality: q,
             speed_deg_s: m.speed_at(frame),

@@ -158,6 +158,7 @@ mod tests {
         FrameReport {
             tp_ms,
             rays_per_depth: vec![1],
+            rays_stopped: None,
             shadow_rays: 0,
             pixels: 1,
             quality: q,

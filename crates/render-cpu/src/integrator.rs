@@ -14,6 +14,10 @@ pub(crate) trait PathSink {
     fn ray(&mut self, depth: u32, ray: &Ray);
     /// A shadow ray traced toward a light.
     fn shadow_ray(&mut self);
+    /// The depth limit ended the chain at a mirror or a dielectric (where a deeper limit
+    /// would have traced one more ray).
+    #[inline]
+    fn stopped(&mut self) {}
     /// A ray of the chain hit a surface (the temporal mode records sample 0's path).
     #[inline]
     fn hit(&mut self, _hit: &PathHit) {}
@@ -84,6 +88,7 @@ pub(crate) fn trace<S: PathSink>(
             }
             Mat::Mirror { reflectance } => {
                 if last {
+                    sink.stopped();
                     return w * local(world, p, n, reflectance, sink);
                 }
                 w *= reflectance;
@@ -91,6 +96,7 @@ pub(crate) fn trace<S: PathSink>(
             }
             Mat::Dielectric { ior, tint } => {
                 if last {
+                    sink.stopped();
                     return w * local(world, p, n, tint, sink);
                 }
                 let eta = if entering { 1.0 / ior } else { ior };

@@ -25,6 +25,7 @@ pub(crate) struct SamplePattern {
 pub(crate) struct TileCounts {
     per_depth: [u64; MAX_DEPTH as usize + 1],
     shadow: u64,
+    stopped: u64,
 }
 
 impl Default for TileCounts {
@@ -32,6 +33,7 @@ impl Default for TileCounts {
         Self {
             per_depth: [0; MAX_DEPTH as usize + 1],
             shadow: 0,
+            stopped: 0,
         }
     }
 }
@@ -43,6 +45,7 @@ impl TileCounts {
             *a += b;
         }
         self.shadow += other.shadow;
+        self.stopped += other.stopped;
         self
     }
 
@@ -51,6 +54,7 @@ impl TileCounts {
         RayCounts {
             per_depth: self.per_depth[..=max_depth as usize].to_vec(),
             shadow: self.shadow,
+            stopped: self.stopped,
         }
     }
 }
@@ -64,6 +68,11 @@ impl PathSink for TileCounts {
     #[inline]
     fn shadow_ray(&mut self) {
         self.shadow += 1;
+    }
+
+    #[inline]
+    fn stopped(&mut self) {
+        self.stopped += 1;
     }
 }
 

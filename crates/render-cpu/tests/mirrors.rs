@@ -90,6 +90,8 @@ fn at_r_zero_mirrors_are_shaded_locally() {
     );
     assert_eq!(stats.rays.per_depth, vec![1]);
     assert_eq!(stats.rays.shadow, 1);
+    // The depth limit stopped the chain at the mirror: R = 1 would trace one more ray.
+    assert_eq!(stats.rays.stopped, 1);
 }
 
 /// The camera between two infinite mirrors z = -1 and z = +1, looking at one of them.
@@ -128,6 +130,7 @@ fn each_extra_depth_adds_exactly_one_reflection_between_facing_mirrors() {
             "R = {depth}"
         );
         assert_eq!(stats.rays.shadow, 0);
+        assert_eq!(stats.rays.stopped, 96, "every chain ends at a mirror");
         assert_eq!(stats.samples, 96);
         // R reflections, then the mirror shaded locally (ambient only): refl^(R+1) · 0.2.
         let want = refl.powf(depth as f32 + 1.0) * 0.2;
@@ -176,4 +179,25 @@ fn a_single_reflection_follows_the_mirror_law() {
         path.rays.iter().map(|r| r.depth).collect::<Vec<_>>(),
         vec![0, 1, 2, 3]
     );
+}
+
+/// The chains the depth limit stops are exactly the rays the next level traces: on the
+/// corridor (two mirror walls, glass and diffuse spheres), at every R, with S = 2 (the same
+/// samples and Fresnel branches at R and R + 1).
+#[test]
+fn the_stopped_chains_are_the_next_levels_rays() {
+    let scene = steadyray_scene::builtin("corridor").unwrap();
+    let mut r = loaded(&scene);
+    let camera = scene.camera_at(0, 720);
+    let counts: Vec<_> = (0..=8)
+        .map(|depth| {
+            r.render(&camera, 0.0, &settings(64, 36, 2.0, depth))
+                .unwrap()
+                .rays
+        })
+        .collect();
+    assert!(counts[0].stopped > 0, "mirrors and glass are in view");
+    for (depth, pair) in counts.windows(2).enumerate() {
+        assert_eq!(pair[0].stopped, pair[1].per_depth[depth + 1], "R = {depth}");
+    }
 }

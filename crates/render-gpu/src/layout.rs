@@ -23,8 +23,8 @@ pub const BVH_EMPTY: u32 = steadyray_accel::GPU_EMPTY;
 pub const WORKGROUP_SIZE: u32 = 8;
 /// Ray counters per workgroup at most: depths 0..=MAX_DEPTH, then shadow rays, then the
 /// carries out of the shadow counter (a workgroup may trace more than 2³² shadow rays with
-/// many lights).
-pub const COUNTER_SLOTS: u32 = MAX_DEPTH + 3;
+/// many lights), then the chains the depth limit stopped (`RayCounts::stopped`).
+pub const COUNTER_SLOTS: u32 = MAX_DEPTH + 4;
 /// Threads of the ray-count reduction workgroup.
 pub const REDUCE_SIZE: u32 = 256;
 

@@ -310,7 +310,7 @@ impl Renderer for GpuRenderer {
         let groups_x = width.div_ceil(WORKGROUP_SIZE);
         let groups_y = height.div_ceil(WORKGROUP_SIZE);
         let group_count = groups_x * groups_y;
-        let counter_stride = settings.max_depth + 3;
+        let counter_stride = settings.max_depth + 4;
         let counters = u64::from(group_count) * u64::from(counter_stride);
         let history = self.temporal.settings();
         if let Some(history) = history {
@@ -419,6 +419,7 @@ impl Renderer for GpuRenderer {
         let rays = RayCounts {
             per_depth: totals[..=depth].to_vec(),
             shadow: totals[depth + 1] + (totals[depth + 2] << 32),
+            stopped: totals[depth + 3],
         };
         let gpu_ms = self
             .timer
@@ -573,8 +574,10 @@ pub(crate) mod tests {
             max_depth: 0,
         };
         renderer.render(&scene.camera, 0.0, &settings).unwrap();
+        // Four counters per workgroup at R = 0: eye rays, shadow rays, their carries and the
+        // stopped chains.
         let counts: Vec<u32> = (0..64u32)
-            .flat_map(|g| [u32::MAX - g, 3_000_000_000 + g, g % 3])
+            .flat_map(|g| [u32::MAX - g, 3_000_000_000 + g, g % 3, g % 5])
             .collect();
         let ctx = &renderer.ctx;
         ctx.queue.write_buffer(
@@ -584,17 +587,17 @@ pub(crate) mod tests {
         );
         let bind_group = renderer.bind_group();
         let mut encoder = renderer.ctx.encoder("reduce test");
-        renderer.encode_totals(&mut encoder, &bind_group, 3);
+        renderer.encode_totals(&mut encoder, &bind_group, 4);
         renderer.ctx.submit_and_wait(encoder.finish()).unwrap();
         let bytes = renderer
             .ctx
-            .read_buffer(&renderer.frame_buffers.stats_readback, 24)
+            .read_buffer(&renderer.frame_buffers.stats_readback, 32)
             .unwrap();
-        let expected = [0, 1, 2].map(|c| {
+        let expected = [0, 1, 2, 3].map(|c| {
             counts
                 .iter()
                 .skip(c)
-                .step_by(3)
+                .step_by(4)
                 .map(|&v| u64::from(v))
                 .sum::<u64>()
         });

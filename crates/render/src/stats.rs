@@ -8,6 +8,11 @@ pub struct RayCounts {
     pub per_depth: Vec<u64>,
     /// Shadow rays toward point lights.
     pub shadow: u64,
+    /// Chains the depth limit ended at a mirror or a dielectric: the rays a frame of depth
+    /// R + 1 would trace at level R + 1 (not traced, not in [`RayCounts::total`]). The
+    /// controllers see with it how far the next level reaches, which no ray of this frame
+    /// could tell them.
+    pub stopped: u64,
 }
 
 impl RayCounts {
@@ -16,6 +21,7 @@ impl RayCounts {
         Self {
             per_depth: vec![0; max_depth as usize + 1],
             shadow: 0,
+            stopped: 0,
         }
     }
 
@@ -33,6 +39,7 @@ impl RayCounts {
             *a += b;
         }
         self.shadow += other.shadow;
+        self.stopped += other.stopped;
     }
 }
 

@@ -2,6 +2,7 @@
 //! where still pictures prefer long frames and fast ones short frames.
 
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
 use steadyray_control::{Metric, MotionModel};
 
@@ -73,9 +74,13 @@ pub fn model() -> MotionModel {
 
 /// [`model`] written to a file of its own in the temporary folder, for `model=PATH`.
 pub fn model_file() -> PathBuf {
+    // A file per call: tests run in parallel threads, and one writing the file another
+    // reads made the reader fail now and then.
+    static CALLS: AtomicUsize = AtomicUsize::new(0);
     let path = std::env::temp_dir().join(format!(
-        "steadyray-control-test-motion-{}.json",
-        std::process::id()
+        "steadyray-control-test-motion-{}-{}.json",
+        std::process::id(),
+        CALLS.fetch_add(1, Ordering::Relaxed)
     ));
     std::fs::write(&path, serde_json::to_string(&model()).unwrap()).unwrap();
     path

@@ -88,6 +88,11 @@ impl<S: PathSink> PathSink for GeometrySink<'_, S> {
         self.inner.shadow_ray();
     }
 
+    #[inline]
+    fn stopped(&mut self) {
+        self.inner.stopped();
+    }
+
     fn hit(&mut self, hit: &PathHit) {
         if self.record.is_some() {
             return;

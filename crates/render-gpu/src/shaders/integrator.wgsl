@@ -62,6 +62,8 @@ fn trace_sample(px: u32, py: u32, sample: u32, eye: vec3<f32>, dir: vec3<f32>) -
             break;
         }
         if k == frame.max_depth {
+            // A mirror or dielectric here: a deeper limit would trace one more ray.
+            atomicAdd(&group_rays[frame.max_depth + 3u], 1u);
             radiance += w * local_shading(p, n, m.colour);
             break;
         }

@@ -7,8 +7,8 @@ const WORKGROUP_SIZE: u32 = 8u;
 // The largest depth R (steadyray_render::MAX_DEPTH).
 const MAX_DEPTH: u32 = 64u;
 // Ray counters per workgroup: one per depth 0..=MAX_DEPTH, then shadow rays (low word, then
-// the carries out of it).
-const COUNTER_SLOTS: u32 = 67u;
+// the carries out of it), then the chains the depth limit stopped at a mirror or dielectric.
+const COUNTER_SLOTS: u32 = 68u;
 // Threads of the ray-count reduction.
 const REDUCE_SIZE: u32 = 256u;
 // Entries of the BVH traversal stack (steadyray_accel::GPU_STACK_SIZE).

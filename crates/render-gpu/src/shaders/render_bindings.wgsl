@@ -9,7 +9,8 @@
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
 // Linear RGBA radiance, row-major, top row first.
 @group(0) @binding(5) var<storage, read_write> image: array<vec4<f32>>;
-// counter_stride counters per workgroup: rays at depth 0..=R, shadow rays, shadow carries.
+// counter_stride counters per workgroup: rays at depth 0..=R, shadow rays, shadow carries,
+// chains stopped by the depth limit.
 @group(0) @binding(6) var<storage, read_write> group_counts: array<u32>;
 // The frame's totals per counter as 64-bit (low, high) pairs.
 @group(0) @binding(7) var<storage, read_write> totals: array<vec2<u32>>;

@@ -90,6 +90,12 @@ pub fn assert_counts(gpu: &RayCounts, cpu: &RayCounts, exact: bool, lights: usiz
     for (k, (g, c)) in gpu.per_depth.iter().zip(&cpu.per_depth).enumerate() {
         assert!(g.abs_diff(*c) <= diverging, "{what}: depth {k}: {g} vs {c}");
     }
+    assert!(
+        gpu.stopped.abs_diff(cpu.stopped) <= diverging,
+        "{what}: stopped chains {} vs {}",
+        gpu.stopped,
+        cpu.stopped
+    );
     let shadow_bound = diverging * (lights * cpu.per_depth.len()) as u64;
     assert!(
         gpu.shadow.abs_diff(cpu.shadow) <= shadow_bound,

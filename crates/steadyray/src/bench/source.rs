@@ -169,6 +169,7 @@ pub fn render_measured(
             tp_ms: stats.render_ms,
             rays_per_depth: stats.rays.per_depth,
             shadow_rays: stats.rays.shadow,
+            rays_stopped: Some(stats.rays.stopped),
             pixels: settings.pixels(),
             quality: q,
             speed_deg_s: 0.0,

@@ -156,6 +156,7 @@ fn print_stats(
         "samples": stats.samples,
         "rays_per_depth": stats.rays.per_depth,
         "shadow_rays": stats.rays.shadow,
+        "rays_stopped": stats.rays.stopped,
         "rays_total": stats.rays.total(),
         "rays_per_s": stats.rays_per_second(),
     });

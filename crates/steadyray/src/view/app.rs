@@ -687,6 +687,7 @@ impl Running {
                     tp_ms: render_ms,
                     rays_per_depth: stats.rays.per_depth.clone(),
                     shadow_rays: stats.rays.shadow,
+                    rays_stopped: Some(stats.rays.stopped),
                     pixels: settings.pixels(),
                     quality: q,
                     speed_deg_s: motion.mean_deg_s,

@@ -117,6 +117,7 @@ mod tests {
         FrameReport {
             tp_ms,
             rays_per_depth: vec![10_000, 5_000],
+            rays_stopped: None,
             shadow_rays: 8_000,
             pixels: 10_000,
             quality: q,
