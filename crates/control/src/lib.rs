@@ -44,8 +44,9 @@
 //!   narrowed so that 2 measured noise deviations stay inside the band);
 //!   otherwise it takes the highest quality predicted to fit the target (`target`=0.5),
 //!   raising at most `max_raise`=2× the rays per change. Raising order (`order`): R while
-//!   at least `min_reach`=2 % of eye rays reach the deeper level, then scale, then S, then
-//!   the remaining R; cuts in reverse (S goes first, resolution next). `ladder`=PATH: move
+//!   at least `min_reach`=2 % of eye rays reach the deeper level (all of R when the deeper
+//!   levels together carry under that), then scale, then S, then the remaining R; cuts in
+//!   reverse (S goes first, resolution next). `ladder`=PATH: move
 //!   along a calibrated Pareto front of (S, R, scale) settings instead ([`ladder`]).
 //! - `perceptual` ([`Perceptual`]): chooses the frame time too. From a quality model over
 //!   (screen speed, frame time, ladder point) ([`motion_model`], `model`=PATH, measured by

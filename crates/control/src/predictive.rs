@@ -26,7 +26,8 @@
 //! 4. Otherwise it takes the highest quality whose predicted time is at most the target,
 //!    raising at most `max_raise` times the current rays per change
 //!    (cuts are not limited). Quality order (`order`, default `depth,scale,spp`): R first,
-//!    while at least `min_reach` of the eye rays reach the deeper level; then the scale
+//!    while at least `min_reach` of the eye rays reach the deeper level (all of R at once
+//!    when the deeper levels together carry no more than that: nearly free); then the scale
 //!    (continuous); then S (continuous); then any remaining R. Cuts go in reverse. Continuous
 //!    knobs let it land on the target instead of oscillating across the band.
 //!
@@ -477,11 +478,19 @@ impl Predictive {
     }
 
     /// The knobs a raise goes through, each with its top: R up to the useful depth on the
-    /// current view, then the others in order, then the rest of R.
+    /// current view, then the others in order, then the rest of R. When the levels beyond
+    /// the useful depth together carry no more rays than one level at `min_reach` would, R
+    /// goes to its top at once: that costs about nothing, and it puts back the reflections
+    /// of the few pixels that show a mirror or glass (a run cut to R = 0 on a view where 1 %
+    /// of the eye rays met a mirror otherwise kept R = 0 for good, S taking all the room).
     fn raise_stages(&self, load: &RayModel) -> Vec<(Knob, f64)> {
         let b = &self.setup.bounds;
         let order = self.params.order.knobs();
-        let useful = load.useful_depth(self.params.min_reach, b.depth_min, b.depth_max);
+        let mut useful = load.useful_depth(self.params.min_reach, b.depth_min, b.depth_max);
+        let tail: f64 = (useful + 1..=b.depth_max).map(|k| load.reach(k)).sum();
+        if tail <= self.params.min_reach {
+            useful = b.depth_max;
+        }
         let mut stages: Vec<(Knob, f64)> = order
             .iter()
             .map(|&k| {

@@ -509,3 +509,28 @@ fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
     );
     assert!(depths[299] >= 8, "{depths:?}");
 }
+
+/// A view where 1 % of the eye rays meet a mirror and then bounce on between two (95 % go
+/// on at each level), a pass-sized fixed cost, and a run arriving at R = 0 (after a cut).
+/// No level beyond 0 is reached by `min_reach` (2 %) of the eye rays, so R was raised only
+/// after S reached its top, which it never does here: R stayed 0, and the mirror pixels
+/// dull. The levels beyond together cost little, so R goes to its top first.
+#[test]
+fn a_cheap_depth_comes_back_before_samples() {
+    let load = Load::geometric(0.01, 0.95, 1.0, 1.0);
+    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
+    model.fixed_ms = 8.0;
+    let full = Quality::new(1.0, 16, 1.0);
+    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.36;
+    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &load) - model.fixed_ms);
+    let records = run(
+        controller("predictive", Quality::new(1.0, 0, 0.5)).as_mut(),
+        &model,
+        200,
+    );
+    let last = records[199].quality;
+    println!("from R = 0: {last}");
+    assert_eq!(last.depth, 16, "{last}");
+    let s = summarize(&records[50..], BAND, top(), Some(&[]));
+    assert!(s.in_band_pct >= 95.0 && s.reversals_per_100 <= 2.0, "{s:?}");
+}
