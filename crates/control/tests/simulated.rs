@@ -467,12 +467,14 @@ fn an_r_cut_on_a_shallow_view_is_traded_back_on_a_deep_one() {
 }
 
 /// A pass-sized fixed cost (8 ms), a shallow view whose rays die out before the depth (a
-/// level reached by some rays, the next by none), a slow spell of four frames at twice the
-/// time, then a deep view (rays bouncing between the mirrors). The spell cuts to the floor,
-/// R = 0 included; the frames at R = 0 measure no level ratio and carry the last one. Read
-/// from the two deepest levels alone that ratio was 0 (some rays, then none), no level
-/// beyond 0 looked reached, and R stayed 0 on the deep view for good. Read from all measured
-/// levels it is the view's, and R comes back as the view deepens.
+/// level reached by some rays, the next by none), a slow spell of four frames at 2.8 times
+/// the time, then a deep view (rays bouncing between the mirrors). The spell cuts to the
+/// floor, R = 0 included. Frames at R = 0 once measured no level ratio and carried the last
+/// one, read from the two deepest levels alone as 0 (some rays, then none): no level beyond
+/// 0 looked reached, and R stayed 0 on the deep view for good (`predictive +temporal` at one
+/// refresh on the CPU). Now the ratio is read from all measured levels, and each frame counts
+/// the next level's rays (the chains its depth limit stopped), so R comes back as the view
+/// deepens.
 #[test]
 fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
     let shallow = Load {
