@@ -6,7 +6,8 @@
 //!    spikes) takes the frame. A frame it sets aside as an outlier is not fitted: a frame
 //!    that took [`HITCH_RATIO`] times its prediction or more is a hitch and changes nothing;
 //!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once with
-//!    predictions scaled by how much slower it ran; a second outlier on the same side
+//!    predictions scaled by how much slower it ran (unless under that scaling not even the
+//!    lowest quality would fit: then no cut can help, and it is not scaled); a second outlier on the same side
 //!    confirms a real change of cost and the model refits at once, as do three fitted frames
 //!    in a row well off their prediction on one side (a cost drifting a little each frame).
 //! 2. The [`RayModel`] of the frame gives the rays any candidate quality would trace. The
@@ -621,6 +622,17 @@ impl Controller for Predictive {
             self.surprise = (report.tp_ms / e).max(1.0);
         }
         self.update_load(report);
+        // A surprise under which not even the lowest quality would fit is not one a cut can
+        // answer (a fixed cost such as the temporal pass, scaled by it, fills the band
+        // alone): cutting to the floor would only flash a poor frame. The predictions stay
+        // as fitted; a lasting change of cost is refitted at its second outlier.
+        if self.surprise > 1.0
+            && self
+                .predict_ms(&self.lowest())
+                .is_some_and(|t| t > self.aim().target_ms)
+        {
+            self.surprise = 1.0;
+        }
         let (quality, ladder_pos) = self.decide();
         if quality != self.quality {
             self.above_run = 0;

@@ -536,3 +536,29 @@ fn a_cheap_depth_comes_back_before_samples() {
     let s = summarize(&records[50..], BAND, top(), Some(&[]));
     assert!(s.in_band_pct >= 95.0 && s.reversals_per_100 <= 2.0, "{s:?}");
 }
+
+/// A fixed cost that fills most of the band (14 ms of [15, 20], as the temporal pass does at
+/// one refresh) and single frames 1.6 times their prediction (a slow spell of the machine).
+/// Where the fitted fixed cost, scaled by that surprise, is over the target alone, no
+/// quality fits: the overload cut went to the floor (S = 1, R = 0, scale 0.25) for the next
+/// frame, a flash of a poor picture (here after frame 180). Now such a surprise is not
+/// scaled: a cut that can restore the band still happens (after frames 100 and 140, the
+/// scale), a cut to the floor does not.
+#[test]
+fn a_slow_frame_no_cut_can_answer_leaves_the_quality() {
+    let load = corridor_load(0.0);
+    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
+    model.fixed_ms = 14.0;
+    let full = Quality::new(1.0, 16, 1.0);
+    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.36;
+    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &load) - model.fixed_ms);
+    model.spike_factor = 1.6;
+    model.spike_frames = vec![100, 140, 180];
+    let records = run(controller("predictive", full).as_mut(), &model, 220);
+    for &f in &model.spike_frames {
+        let (before, after) = (records[f].quality, records[f + 1].quality);
+        println!("slow frame {f}: {before} then {after}");
+        assert_eq!(after.depth, 16, "frame {}: {after}", f + 1);
+        assert!(after.scale > 0.25, "frame {}: {after}", f + 1);
+    }
+}
