@@ -7,7 +7,9 @@
 //!    that took [`HITCH_RATIO`] times its prediction or more is a hitch and changes nothing;
 //!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once with
 //!    predictions scaled by how much slower it ran (unless under that scaling not even the
-//!    lowest quality would fit: then no cut can help, and it is not scaled); a second outlier on the same side
+//!    lowest quality would fit: then no cut can help, and it is not scaled), a cut that keeps
+//!    R (one slow frame is often the machine's; vanished reflections are the most visible
+//!    cut and the slowest to come back); a second outlier on the same side
 //!    confirms a real change of cost and the model refits at once, as do three fitted frames
 //!    in a row well off their prediction on one side (a cost drifting a little each frame).
 //! 2. The [`RayModel`] of the frame gives the rays any candidate quality would trace. The
@@ -525,7 +527,17 @@ impl Predictive {
         }
         let order = self.params.order.knobs();
         let stages: Vec<(Knob, f64)> = order.iter().map(|&k| (k, self.quality.get(k))).collect();
-        self.climb(self.lowest(), &stages, fits)
+        // A cut on one unconfirmed overload (predictions scaled by its surprise) keeps R:
+        // reflections that vanish are the most visible cut and the slowest to come back, and
+        // one slow frame is often the machine's, not the view's. A lasting overload refits
+        // the cost model at its second outlier, and that cut may take R.
+        let floor = if self.surprise > 1.0 {
+            self.lowest()
+                .with(Knob::Depth, self.quality.get(Knob::Depth))
+        } else {
+            self.lowest()
+        };
+        self.climb(floor, &stages, fits)
     }
 
     /// The current quality with every knob of the order at its lowest.

@@ -562,3 +562,26 @@ fn a_slow_frame_no_cut_can_answer_leaves_the_quality() {
         assert!(after.scale > 0.25, "frame {}: {after}", f + 1);
     }
 }
+
+/// An 8 ms fixed cost in [15, 20] with the scale held low (R = 16 fits at about 0.3 of it)
+/// and single frames 1.6 times their prediction. The floor fits under that surprise, so the
+/// cut happens; with S at 1 and the scale nearly at its floor it fell on R (to 0: the
+/// mirrors' reflections gone until R came back). A cut on one unconfirmed overload now keeps
+/// R and takes the scale.
+#[test]
+fn one_slow_frame_does_not_cut_r() {
+    let load = corridor_load(0.0);
+    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
+    model.fixed_ms = 8.0;
+    let full = Quality::new(1.0, 16, 1.0);
+    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.09;
+    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &load) - model.fixed_ms);
+    model.spike_factor = 1.6;
+    model.spike_frames = vec![100, 140, 180];
+    let records = run(controller("predictive", full).as_mut(), &model, 220);
+    for &f in &model.spike_frames {
+        let (before, after) = (records[f].quality, records[f + 1].quality);
+        println!("slow frame {f}: {before} then {after}");
+        assert_eq!(after.depth, 16, "frame {}: {before} then {after}", f + 1);
+    }
+}
