@@ -24,8 +24,8 @@
 use crate::config::DisplayConfig;
 use crate::error::DisplayError;
 use crate::model::{Display, FrameTimes};
+use crate::stats::quantile;
 use crate::timeline::Timeline;
-use std::collections::VecDeque;
 
 /// The longest run accepted, s (a bound on the timeline's size).
 pub const MAX_DURATION_S: f64 = 3600.0;
@@ -57,7 +57,7 @@ pub struct RealClock {
     display: Display,
     duration_ms: f64,
     /// The render and hand-over times of the last frames (at most [`PREDICTION_FRAMES`]).
-    recent_busy_ms: VecDeque<f64>,
+    recent_busy_ms: Vec<f64>,
 }
 
 impl RealClock {
@@ -69,7 +69,7 @@ impl RealClock {
         Ok(Self {
             display: Display::new(config),
             duration_ms: duration_s * 1000.0,
-            recent_busy_ms: VecDeque::with_capacity(PREDICTION_FRAMES),
+            recent_busy_ms: Vec::with_capacity(PREDICTION_FRAMES + 1),
         })
     }
 
@@ -78,23 +78,17 @@ impl RealClock {
     /// own. A NaN, infinite or negative time is ignored.
     pub fn expect(&mut self, busy_ms: f64) {
         if busy_ms.is_finite() && busy_ms >= 0.0 {
-            if self.recent_busy_ms.len() == PREDICTION_FRAMES {
-                self.recent_busy_ms.pop_front();
+            self.recent_busy_ms.push(busy_ms);
+            if self.recent_busy_ms.len() > PREDICTION_FRAMES {
+                self.recent_busy_ms.remove(0);
             }
-            self.recent_busy_ms.push_back(busy_ms);
         }
     }
 
     /// The render and hand-over time the next frame is predicted to take: the median of the
     /// recent frames' (the mean of the middle two of an even count), 0 before any.
     pub fn predicted_busy_ms(&self) -> f64 {
-        let mut times: Vec<f64> = self.recent_busy_ms.iter().copied().collect();
-        times.sort_by(f64::total_cmp);
-        match times.len() {
-            0 => 0.0,
-            n if n % 2 == 1 => times[n / 2],
-            n => 0.5 * (times[n / 2 - 1] + times[n / 2]),
-        }
+        quantile(&self.recent_busy_ms, 0.5).unwrap_or(0.0)
     }
 
     /// The run's length, ms.
