@@ -527,17 +527,21 @@ impl Predictive {
         }
         let order = self.params.order.knobs();
         let stages: Vec<(Knob, f64)> = order.iter().map(|&k| (k, self.quality.get(k))).collect();
-        // A cut on one unconfirmed overload (predictions scaled by its surprise) keeps R:
-        // reflections that vanish are the most visible cut and the slowest to come back, and
-        // one slow frame is often the machine's, not the view's. A lasting overload refits
-        // the cost model at its second outlier, and that cut may take R.
-        let floor = if self.surprise > 1.0 {
-            self.lowest()
-                .with(Knob::Depth, self.quality.get(Knob::Depth))
+        self.climb(self.cut_floor(), &stages, fits)
+    }
+
+    /// The lowest quality a cut may reach: [`Predictive::lowest`], but keeping R on one
+    /// unconfirmed overload (predictions scaled by its surprise): reflections that vanish are
+    /// the most visible cut and the slowest to come back, and one slow frame is often the
+    /// machine's, not the view's. A lasting overload refits the cost model at its second
+    /// outlier, and that cut may take R.
+    fn cut_floor(&self) -> Quality {
+        let lowest = self.lowest();
+        if self.surprise > 1.0 {
+            lowest.with(Knob::Depth, self.quality.get(Knob::Depth))
         } else {
-            self.lowest()
-        };
-        self.climb(floor, &stages, fits)
+            lowest
+        }
     }
 
     /// The current quality with every knob of the order at its lowest.
@@ -634,13 +638,14 @@ impl Controller for Predictive {
             self.surprise = (report.tp_ms / e).max(1.0);
         }
         self.update_load(report);
-        // A surprise under which not even the lowest quality would fit is not one a cut can
-        // answer (a fixed cost such as the temporal pass, scaled by it, fills the band
-        // alone): cutting to the floor would only flash a poor frame. The predictions stay
-        // as fitted; a lasting change of cost is refitted at its second outlier.
+        // A surprise under which not even the lowest quality a cut may reach would fit is not
+        // one a cut can answer (a fixed cost such as the temporal pass, scaled by it, fills
+        // the band alone): cutting to that floor would only flash a poor frame. The
+        // predictions stay as fitted; a lasting change of cost is refitted at its second
+        // outlier.
         if self.surprise > 1.0
             && self
-                .predict_ms(&self.lowest())
+                .predict_ms(&self.cut_floor())
                 .is_some_and(|t| t > self.aim().target_ms)
         {
             self.surprise = 1.0;
