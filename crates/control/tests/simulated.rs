@@ -493,13 +493,10 @@ fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
             }
         })
         .collect();
-    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Frames(loads));
-    model.fixed_ms = 8.0;
-    // The deep view at R = 16 fits the band's centre at about 0.6 of the scale.
+    // The deep view at R = 16 fits the band's centre at 0.6 of the scale.
+    let model = RendererModel::corridor(720).with_profile(LoadProfile::Frames(loads));
+    let mut model = with_fixed_cost(model, &deep, 8.0, 0.6);
     let start = Quality::new(1.0, 5, 1.0);
-    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.36;
-    let full = Quality::new(1.0, 16, 1.0);
-    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &deep) - model.fixed_ms);
     model.spike_factor = 2.8;
     model.spike_frames = vec![30, 31, 32, 33];
     let records = run(controller("predictive", start).as_mut(), &model, 300);
@@ -520,11 +517,8 @@ fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
 #[test]
 fn a_cheap_depth_comes_back_before_samples() {
     let load = Load::geometric(0.01, 0.95, 1.0, 1.0);
-    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
-    model.fixed_ms = 8.0;
-    let full = Quality::new(1.0, 16, 1.0);
-    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.36;
-    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &load) - model.fixed_ms);
+    let model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
+    let model = with_fixed_cost(model, &load, 8.0, 0.6);
     let records = run(
         controller("predictive", Quality::new(1.0, 0, 0.5)).as_mut(),
         &model,
@@ -537,51 +531,67 @@ fn a_cheap_depth_comes_back_before_samples() {
     assert!(s.in_band_pct >= 95.0 && s.reversals_per_100 <= 2.0, "{s:?}");
 }
 
-/// A fixed cost that fills most of the band (14 ms of [15, 20], as the temporal pass does at
-/// one refresh) and single frames 1.6 times their prediction (a slow spell of the machine).
-/// Where the fitted fixed cost, scaled by that surprise, is over the target alone, no
-/// quality fits: the overload cut went to the floor (S = 1, R = 0, scale 0.25) for the next
-/// frame, a flash of a poor picture (here after frame 180). Now such a surprise is not
-/// scaled: a cut that can restore the band still happens (after frames 100 and 140, the
-/// scale), a cut to the floor does not.
-#[test]
-fn a_slow_frame_no_cut_can_answer_leaves_the_quality() {
-    let load = corridor_load(0.0);
-    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
-    model.fixed_ms = 14.0;
+/// `model` with a fixed cost of `fixed_ms` (pass-sized: the temporal mode's on two cores)
+/// and the cost per ray at which S = 1, R = 16 on `load` takes the band's centre at `scale`
+/// of the resolution.
+fn with_fixed_cost(
+    mut model: RendererModel,
+    load: &Load,
+    fixed_ms: f64,
+    scale: f64,
+) -> RendererModel {
+    model.fixed_ms = fixed_ms;
     let full = Quality::new(1.0, 16, 1.0);
-    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.36;
-    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &load) - model.fixed_ms);
+    let rays_ms = (BAND.centre_ms() - fixed_ms) / (scale * scale);
+    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, load) - fixed_ms);
+    model
+}
+
+/// `predictive` from S = 1, R = 16 at full scale on the corridor's mirror view with a fixed cost of `fixed_ms`
+/// (R = 16 fitting at `scale`), frames 100, 140 and 180 taking 1.6 times their prediction (a
+/// slow spell of the machine): the quality of each of those frames and of the next.
+fn around_slow_frames(fixed_ms: f64, scale: f64) -> Vec<(Quality, Quality)> {
+    let load = corridor_load(0.0);
+    let model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
+    let mut model = with_fixed_cost(model, &load, fixed_ms, scale);
     model.spike_factor = 1.6;
     model.spike_frames = vec![100, 140, 180];
+    let full = Quality::new(1.0, 16, 1.0);
     let records = run(controller("predictive", full).as_mut(), &model, 220);
-    for &f in &model.spike_frames {
-        let (before, after) = (records[f].quality, records[f + 1].quality);
-        println!("slow frame {f}: {before} then {after}");
-        assert_eq!(after.depth, 16, "frame {}: {after}", f + 1);
-        assert!(after.scale > 0.25, "frame {}: {after}", f + 1);
+    model
+        .spike_frames
+        .iter()
+        .map(|&f| {
+            let (before, after) = (records[f].quality, records[f + 1].quality);
+            println!("fixed {fixed_ms} ms, slow frame {f}: {before} then {after}");
+            (before, after)
+        })
+        .collect()
+}
+
+/// A fixed cost that fills most of the band (14 ms of [15, 20], as the temporal pass does at
+/// one refresh) and single slow frames. Where the fitted fixed cost, scaled by the frame's
+/// surprise, is over the target alone, no quality fits: the overload cut went to the floor
+/// (S = 1, R = 0, scale 0.25) for the next frame, a flash of a poor picture (here after
+/// frame 180). Now such a surprise is not scaled: a cut that can restore the band still
+/// happens (after frames 100 and 140, the scale), a cut to the floor does not.
+#[test]
+fn a_slow_frame_no_cut_can_answer_leaves_the_quality() {
+    for (before, after) in around_slow_frames(14.0, 0.6) {
+        assert_eq!(after.depth, 16, "{before} then {after}");
+        assert!(after.scale > 0.25, "{before} then {after}");
     }
 }
 
 /// An 8 ms fixed cost in [15, 20] with the scale held low (R = 16 fits at about 0.3 of it)
-/// and single frames 1.6 times their prediction. The floor fits under that surprise, so the
-/// cut happens; with S at 1 and the scale nearly at its floor it fell on R (to 0: the
-/// mirrors' reflections gone until R came back). A cut on one unconfirmed overload now keeps
-/// R and takes the scale.
+/// and single slow frames. With S at 1 and the scale nearly at its floor, the surprise's cut
+/// fell on R (to 0: the mirrors' reflections gone until R came back). A cut on one
+/// unconfirmed overload now keeps R; here even the scale's floor would not fit under the
+/// surprise, so no cut is made at all.
 #[test]
 fn one_slow_frame_does_not_cut_r() {
-    let load = corridor_load(0.0);
-    let mut model = RendererModel::corridor(720).with_profile(LoadProfile::Constant(load.clone()));
-    model.fixed_ms = 8.0;
-    let full = Quality::new(1.0, 16, 1.0);
-    let rays_ms = (BAND.centre_ms() - model.fixed_ms) / 0.09;
-    model.ns_per_ray *= rays_ms / (model.ideal_ms(&full, &load) - model.fixed_ms);
-    model.spike_factor = 1.6;
-    model.spike_frames = vec![100, 140, 180];
-    let records = run(controller("predictive", full).as_mut(), &model, 220);
-    for &f in &model.spike_frames {
-        let (before, after) = (records[f].quality, records[f + 1].quality);
-        println!("slow frame {f}: {before} then {after}");
-        assert_eq!(after.depth, 16, "frame {}: {before} then {after}", f + 1);
+    for (before, after) in around_slow_frames(8.0, 0.3) {
+        assert_eq!(after.depth, 16, "{before} then {after}");
+        assert!(after.scale > 0.25, "{before} then {after}");
     }
 }
