@@ -6,10 +6,10 @@
 //!    spikes) takes the frame. A frame it sets aside as an outlier is not fitted: a frame
 //!    that took [`HITCH_RATIO`] times its prediction or more is a hitch and changes nothing;
 //!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once with
-//!    predictions scaled by how much slower it ran (unless under that scaling not even the
-//!    lowest quality would fit: then no cut can help, and it is not scaled), a cut that keeps
-//!    R (one slow frame is often the machine's; vanished reflections are the most visible
-//!    cut and the slowest to come back); a second outlier on the same side
+//!    predictions scaled by how much slower it ran, a cut that keeps R (one slow frame is
+//!    often the machine's; vanished reflections are the most visible cut and the slowest to
+//!    come back), or none when under that scaling not even the lowest such quality would
+//!    fit (no cut can help); a second outlier on the same side
 //!    confirms a real change of cost and the model refits at once, as do three fitted frames
 //!    in a row well off their prediction on one side (a cost drifting a little each frame).
 //! 2. The [`RayModel`] of the frame gives the rays any candidate quality would trace. The
