@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
 # The temporal mode's checks on a real GPU in one go (issue 17; docs/temporal.md,
-# docs/subjective.md): the pass's cost at 1920x1080 (a plain frame against the same view
-# after 30 frames of history, alternating), then the corridor under the real clock at the
-# paper's band and at one and two refreshes, each controller without and with the history.
-# Displayed FLIP is scored there; JOD needs the videos and Python (scripts/jod), which the
-# device machine has not got.
+# docs/subjective.md), in the order of what matters most, each stage skipped when too little
+# of the time budget is left for it:
+#   1. pass: the pass's cost at 1920x1080 (a plain frame against the same view after 30
+#      frames of history, alternating; render_ms by GPU timestamps);
+#   2. still: a still corridor view, one frame at S against the history of 31 frames (1 s at
+#      the paper's band) at S, both against a reference at S = STILL_REF_SPP (steadyray compare);
+#   3. paper, refresh, refresh2: the corridor under the real clock at the paper's band and at
+#      one and two refreshes, each controller without and with the history, displayed FLIP,
+#      the screen videos (references at S = REF_SPP), and their JOD (scripts/jod/jod.py)
+#      when python3 has torch and pycvvdp (carry the wheels cvvdp, ffmpeg-python and future,
+#      installed with --target and PYTHONPATH: see the device recipe).
+# Small results (summaries, tables, frames.csv, jod.json, the still view's figures) are packed
+# into OUT/results.tar.gz after every stage, so a run cut short still returns what it did.
 #
 # On the device machine, after the recipe of ../shared/gpu/README.md (the Vulkan loader
 # unpacked from .gl/, the release binary in .gpu-bin/):
-#     scripts/gpu/temporal.sh "$OUT/temporal"
+#     scripts/gpu/temporal.sh "$OUT"
 # A dry run here on lavapipe, small and short:
-#     STEADYRAY=target/release/steadyray W=160 H=90 DURATION=0.5 REPEAT=2 \
+#     STEADYRAY=target/release/steadyray W=160 H=90 DURATION=0.5 REPEAT=2 REF_SPP=16 \
 #         xvfb-run -a scripts/gpu/temporal.sh /tmp/temporal-dry
 set -euo pipefail
 out=${1:?usage: scripts/gpu/temporal.sh OUT_DIR}
@@ -18,17 +26,91 @@ bin=${STEADYRAY:-.gpu-bin/steadyray}
 w=${W:-1920}
 h=${H:-1080}
 duration=${DURATION:-4}
-repeat=${REPEAT:-5}
-mkdir -p "$out"
+repeat=${REPEAT:-3}
+budget=${BUDGET_S:-520}
+ref_spp=${REF_SPP:-256}
+still_ref_spp=${STILL_REF_SPP:-1024}
+still_spp=${STILL_SPP:-1 4 16}
+work=${WORK:-/tmp/steadyray-temporal}
+mkdir -p "$out" "$work"
+log="$work/log.txt"
+exec > >(tee -a "$log") 2>&1
+
+# Whether at least $1 seconds of the budget are left; says so when not.
+left() {
+    if (( budget - SECONDS < $1 )); then
+        echo "skipped: $2 (needs about $1 s, $(( budget - SECONDS )) s left)"
+        return 1
+    fi
+}
+pack() {
+    (cd "$work" && find . \( -name '*.json' -o -name '*.jsonl' -o -name '*.md' -o -name '*.csv' \
+        -o -name '*.txt' -o -name frametime.png \) -not -path '*/displayed/*' \
+        -not -path '*/reference/*' -not -name timings.csv -print0 |
+        tar --null -czf "$out/results.tar.gz.partial" -T -) &&
+        mv "$out/results.tar.gz.partial" "$out/results.tar.gz"
+}
+jod() {
+    if python3 -c 'import pycvvdp, torch' 2>/dev/null; then
+        python3 scripts/jod/jod.py "$1" --summary "$2/summary.json" --steadyray "$bin" || true
+    else
+        echo "no JOD: python3 lacks pycvvdp or torch"
+    fi
+}
+
 size=(--backend gpu --width "$w" --height "$h")
-view=(--spp 1 --depth 16 --time 0.5 --stats)
-for _ in $(seq "$repeat"); do
-    "$bin" render "${size[@]}" "${view[@]}" --output "$out/plain.png" | tail -n 1 >>"$out/pass-plain.jsonl"
-    "$bin" render "${size[@]}" "${view[@]}" --temporal 30 --output "$out/temporal.png" |
-        tail -n 1 >>"$out/pass-temporal.jsonl"
-done
-bench=(bench "${size[@]}" --clock real --duration "$duration" --quality --every 4)
-"$bin" "${bench[@]}" --tmin 15 --tmax 20 --controllers predictive --temporal both --out "$out/paper"
-"$bin" "${bench[@]}" --band refresh --controllers hysteresis,predictive --temporal both --out "$out/refresh"
-"$bin" "${bench[@]}" --band refresh:2 --controllers predictive --temporal both --out "$out/refresh2"
-echo "wrote $out: pass-plain.jsonl, pass-temporal.jsonl (render_ms of each), paper/, refresh/, refresh2/"
+if left 30 "pass"; then
+    view=(--spp 1 --depth 16 --time 0.5 --stats)
+    for _ in $(seq "$repeat"); do
+        "$bin" render "${size[@]}" "${view[@]}" --output "$work/plain.png" |
+            tail -n 1 >>"$work/pass-plain.jsonl"
+        "$bin" render "${size[@]}" "${view[@]}" --temporal 30 --output "$work/temporal.png" |
+            tail -n 1 >>"$work/pass-temporal.jsonl"
+    done
+    pack
+fi
+
+if left 40 "still"; then
+    still=(render "${size[@]}" --yaw 20 --depth 16)
+    "$bin" "${still[@]}" --spp "$still_ref_spp" --output "$work/still-reference.png" >/dev/null
+    for s in $still_spp; do
+        "$bin" "${still[@]}" --spp "$s" --output "$work/still-one-$s.png" >/dev/null
+        "$bin" "${still[@]}" --spp "$s" --temporal 31 --output "$work/still-history-$s.png" >/dev/null
+        for kind in one history; do
+            printf '{"spp":%s,"kind":"%s","compare":%s}\n' "$s" "$kind" \
+                "$("$bin" compare "$work/still-reference.png" "$work/still-$kind-$s.png")" \
+                >>"$work/still.jsonl"
+        done
+    done
+    pack
+fi
+
+bench=(bench "${size[@]}" --clock real --duration "$duration" --quality --every 4
+    --reference-spp "$ref_spp")
+# Runs one bench into $work/$1 with its video in $work/$1-video (the references of an
+# earlier bench linked in: same scene, size, rate and length), then its JOD.
+run_bench() {
+    local name=$1
+    shift
+    local video="$work/$name-video"
+    mkdir -p "$video"
+    if [[ -d "$work/paper-video/reference" && ! -e "$video/reference" ]]; then
+        cp -al "$work/paper-video/reference" "$video/reference"
+    fi
+    "$bin" "${bench[@]}" "$@" --video "$video" --out "$work/$name"
+    pack
+    jod "$video" "$work/$name"
+    rm -rf "$video"/*/displayed "$video"/*.y4m "$video"/*/*.y4m
+    pack
+}
+if left 150 "paper"; then
+    run_bench paper --tmin 15 --tmax 20 --controllers predictive --temporal both
+fi
+if left 200 "refresh"; then
+    run_bench refresh --band refresh --controllers hysteresis,predictive --temporal both
+fi
+if left 110 "refresh2"; then
+    run_bench refresh2 --band refresh:2 --controllers predictive --temporal both
+fi
+pack
+echo "wrote $out/results.tar.gz after $SECONDS s"

@@ -6,6 +6,7 @@
 use super::real_clock::DisplayRun;
 use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result, bail};
+use rayon::prelude::*;
 use std::collections::BTreeMap;
 use steadyray_control::Quality;
 use steadyray_display::stats::{mean, quantile};
@@ -57,21 +58,50 @@ impl TimedReferences {
             .with_context(|| format!("no reference of the world at {t_s:.4} s"))
     }
 
-    /// Mean FLIP of the world at `then_s` shown at `now_s` (the reference at `now_s` is the
-    /// truth): what a perfect picture costs for its age alone.
-    pub fn age_flip(&mut self, then_s: f64, now_s: f64, pixels_per_degree: f32) -> Result<f64> {
+    /// Computes, in parallel, the FLIP of every pair (then, now) of `pairs` not held yet: the
+    /// world at `then_s` shown at `now_s` against the reference at `now_s` (the truth), what
+    /// a perfect picture costs for its age alone. [`Self::age_flip`] then reads them.
+    pub fn measure_age_flips(
+        &mut self,
+        pairs: impl IntoIterator<Item = (f64, f64)>,
+        pixels_per_degree: f32,
+    ) -> Result<()> {
+        let mut missing: Vec<(f64, f64)> = pairs
+            .into_iter()
+            .filter(|&(then_s, now_s)| {
+                let key = (time_key(then_s), time_key(now_s));
+                key.0 != key.1 && !self.age_flips.contains_key(&key)
+            })
+            .collect();
+        missing.sort_by_key(|&(then_s, now_s)| (time_key(then_s), time_key(now_s)));
+        missing.dedup_by_key(|&mut (then_s, now_s)| (time_key(then_s), time_key(now_s)));
+        let measured = missing
+            .par_iter()
+            .map(|&(then_s, now_s)| {
+                let flip = steadyray_quality::flip_at(
+                    self.at(now_s)?,
+                    self.at(then_s)?,
+                    pixels_per_degree,
+                )?;
+                Ok(((time_key(then_s), time_key(now_s)), flip.mean()))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        self.age_flips.extend(measured);
+        Ok(())
+    }
+
+    /// The FLIP of the world at `then_s` shown at `now_s` (0 when they are the same time),
+    /// measured by [`Self::measure_age_flips`].
+    pub fn age_flip(&self, then_s: f64, now_s: f64) -> Result<f64> {
         let key = (time_key(then_s), time_key(now_s));
         if key.0 == key.1 {
             return Ok(0.0);
         }
-        if let Some(&flip) = self.age_flips.get(&key) {
-            return Ok(flip);
-        }
-        let flip =
-            steadyray_quality::flip_at(self.at(now_s)?, self.at(then_s)?, pixels_per_degree)?
-                .mean();
-        self.age_flips.insert(key, flip);
-        Ok(flip)
+        self.age_flips.get(&key).copied().with_context(|| {
+            format!(
+                "the age FLIP of the world at {then_s:.4} s shown at {now_s:.4} s was not measured"
+            )
+        })
     }
 
     /// Renders the references of those `times` not held yet; `progress` is told of each.
@@ -178,18 +208,31 @@ pub fn measure(
     size: (u32, u32),
     pixels_per_degree: f32,
 ) -> Result<Option<DisplayedQuality>> {
-    let (mut displayed, mut own, mut age_flip, mut age) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for s in samples {
-        let screen = screen_picture(run, s.frame, size)?;
-        let at = |t_s| -> Result<f64> {
-            Ok(steadyray_quality::flip_at(references.at(t_s)?, &screen, pixels_per_degree)?.mean())
-        };
-        displayed.push(at(s.time_s)?);
-        own.push(at(s.world_s)?);
-        age_flip.push(references.age_flip(s.world_s, s.time_s, pixels_per_degree)?);
-        age.push(1000.0 * (s.time_s - s.world_s));
-    }
+    references.measure_age_flips(
+        samples.iter().map(|s| (s.world_s, s.time_s)),
+        pixels_per_degree,
+    )?;
+    let references = &*references;
+    let rows = samples
+        .par_iter()
+        .map(|s| -> Result<[f64; 4]> {
+            let screen = screen_picture(run, s.frame, size)?;
+            let at = |t_s| -> Result<f64> {
+                Ok(
+                    steadyray_quality::flip_at(references.at(t_s)?, &screen, pixels_per_degree)?
+                        .mean(),
+                )
+            };
+            Ok([
+                at(s.time_s)?,
+                at(s.world_s)?,
+                references.age_flip(s.world_s, s.time_s)?,
+                1000.0 * (s.time_s - s.world_s),
+            ])
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let column = |i: usize| rows.iter().map(|row| row[i]).collect::<Vec<_>>();
+    let (displayed, own, age_flip, age) = (column(0), column(1), column(2), column(3));
     Ok(mean(&displayed).map(|flip_mean| DisplayedQuality {
         samples: displayed.len(),
         flip_mean,

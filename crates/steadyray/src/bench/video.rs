@@ -17,14 +17,14 @@
 //! of the PNGs replaces it. Each folder is written under a temporary name and renamed when
 //! complete, and `video.json` comes last: a folder without it is not a finished video.
 
-use super::displayed::{TimedReferences, screen_picture, screen_samples};
+use super::displayed::{ScreenSample, TimedReferences, screen_picture, screen_samples};
 use super::real_clock::DisplayRun;
 use super::record::safe_name;
 use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result, bail};
 use image::ImageEncoder;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -83,6 +83,25 @@ impl Staging {
             )
         })?;
         Ok(self.target)
+    }
+}
+
+/// Pictures encoded at once, in parallel: enough to keep every core busy, few enough that a
+/// batch of 1080p frames stays small in memory.
+const ENCODE_BATCH: usize = 32;
+
+/// A picture as it is written: a lossless PNG and its planes for the `.y4m`.
+struct Encoded {
+    png: Vec<u8>,
+    planes: Vec<u8>,
+}
+
+impl Encoded {
+    fn new(picture: &Rgb8Image) -> Result<Self> {
+        Ok(Self {
+            png: encode_png(picture)?,
+            planes: y4m_frame(picture),
+        })
     }
 }
 
@@ -219,28 +238,28 @@ pub fn write_run(
         size,
         display.refresh_hz,
     )?;
-    let mut encoded: HashMap<Option<usize>, (Vec<u8>, Vec<u8>)> = HashMap::new();
-    let mut previous = None;
-    for s in &samples {
-        if previous != Some(s.frame) {
-            encoded.clear();
-            let picture = screen_picture(run, s.frame, size)?;
-            encoded.insert(s.frame, (encode_png(&picture)?, y4m_frame(&picture)));
-            previous = Some(s.frame);
+    let shown: Vec<&[ScreenSample]> = samples.chunk_by(|a, b| a.frame == b.frame).collect();
+    for batch in shown.chunks(ENCODE_BATCH) {
+        let encoded = batch
+            .par_iter()
+            .map(|refreshes| Encoded::new(&screen_picture(run, refreshes[0].frame, size)?))
+            .collect::<Result<Vec<_>>>()?;
+        for (refreshes, picture) in batch.iter().zip(&encoded) {
+            for s in *refreshes {
+                write_file(&frames_dir.join(frame_name(s.index)), &picture.png)?;
+                movie.frame(&picture.planes)?;
+                let frame = s
+                    .frame
+                    .map_or_else(|| "warmup".to_string(), |j| j.to_string());
+                csv.push_str(&format!(
+                    "{},{:.4},{frame},{:.6},{:.4}\n",
+                    s.index,
+                    1000.0 * s.time_s,
+                    s.world_s,
+                    1000.0 * (s.time_s - s.world_s)
+                ));
+            }
         }
-        let (png, planes) = &encoded[&s.frame];
-        write_file(&frames_dir.join(frame_name(s.index)), png)?;
-        movie.frame(planes)?;
-        let frame = s
-            .frame
-            .map_or_else(|| "warmup".to_string(), |j| j.to_string());
-        csv.push_str(&format!(
-            "{},{:.4},{frame},{:.6},{:.4}\n",
-            s.index,
-            1000.0 * s.time_s,
-            s.world_s,
-            1000.0 * (s.time_s - s.world_s)
-        ));
     }
     movie.finish()?;
     write_file(&staging.temp.join("timings.csv"), csv.as_bytes())?;
@@ -301,21 +320,33 @@ pub fn write_references(
     let staging = Staging::new(dir, "reference")?;
     let y4m = dir.join(".reference.y4m.partial");
     let mut movie = Y4mWriter::create(&y4m, size, key.refresh_hz)?;
-    for (i, &t_s) in times_s.iter().enumerate() {
-        source
-            .frame(PathPoint::Time { index: 0, t_s }, references.quality())
-            .with_context(|| format!("reference of refresh {i} failed"))?;
-        let image = source
-            .last_image()?
-            .context("--video needs a renderer that produces images (not --simulate)")?;
-        let picture = Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba())?
-            .resize_bilinear(size.0, size.1);
-        write_file(&staging.temp.join(frame_name(i)), &encode_png(&picture)?)?;
-        movie.frame(&y4m_frame(&picture))?;
-        if wanted(t_s) {
-            references.insert(t_s, picture);
+    for (batch_index, batch) in times_s.chunks(ENCODE_BATCH).enumerate() {
+        let first = batch_index * ENCODE_BATCH;
+        let mut pictures = Vec::with_capacity(batch.len());
+        for (i, &t_s) in (first..).zip(batch) {
+            source
+                .frame(PathPoint::Time { index: 0, t_s }, references.quality())
+                .with_context(|| format!("reference of refresh {i} failed"))?;
+            let image = source
+                .last_image()?
+                .context("--video needs a renderer that produces images (not --simulate)")?;
+            pictures.push(
+                Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba())?
+                    .resize_bilinear(size.0, size.1),
+            );
         }
-        progress();
+        let encoded = pictures
+            .par_iter()
+            .map(Encoded::new)
+            .collect::<Result<Vec<_>>>()?;
+        for (((i, &t_s), picture), encoded) in (first..).zip(batch).zip(pictures).zip(encoded) {
+            write_file(&staging.temp.join(frame_name(i)), &encoded.png)?;
+            movie.frame(&encoded.planes)?;
+            if wanted(t_s) {
+                references.insert(t_s, picture);
+            }
+            progress();
+        }
     }
     movie.finish()?;
     write_file(
