@@ -29,7 +29,7 @@ use render::{FrameOutputs, SamplePattern};
 use std::time::Instant;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::{
-    BackendInfo, FrameStats, Image, MAX_DEPTH, RenderError, RenderSettings, Renderer,
+    BackendInfo, FrameStats, Image, MAX_DEPTH, Presented, RenderError, RenderSettings, Renderer,
     SettingsError, TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
@@ -224,6 +224,10 @@ impl Renderer for CpuRenderer {
             Some(history) => history.image().ok_or(RenderError::NoFrame),
             None => self.image.clone().ok_or(RenderError::NoFrame),
         }
+    }
+
+    fn present(&mut self) -> Result<Presented, RenderError> {
+        Ok(Presented::Host(self.read_image()?.to_srgb8_rgba()))
     }
 
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {

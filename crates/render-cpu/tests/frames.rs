@@ -4,7 +4,7 @@ mod common;
 
 use common::*;
 use steadyray_render::sampling::samples_for_pixel;
-use steadyray_render::{RenderError, RenderSettings, Renderer, SettingsError};
+use steadyray_render::{Presented, RenderError, RenderSettings, Renderer, SettingsError};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_scene::{Shape, Transform, TriangleMesh, Vec3};
 
@@ -85,6 +85,16 @@ fn the_image_follows_the_frame_size() {
     assert_eq!((small.width, small.height, small.pixels.len()), (5, 3, 15));
     r.render(&s.camera, 0.0, &settings(8, 8, 1.0, 1)).unwrap();
     assert_eq!(r.read_image().unwrap(), big);
+}
+
+#[test]
+fn presenting_hands_over_the_tone_mapped_frame() {
+    let s = corridor();
+    let mut r = loaded(&s);
+    assert!(matches!(r.present(), Err(RenderError::NoFrame)));
+    r.render(&s.camera, 0.0, &settings(9, 7, 1.0, 2)).unwrap();
+    let want = r.read_image().unwrap().to_srgb8_rgba();
+    assert_eq!(r.present().unwrap(), Presented::Host(want));
 }
 
 #[test]

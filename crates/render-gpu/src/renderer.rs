@@ -13,7 +13,7 @@ use std::time::Instant;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::two_level::SceneLayout;
 use steadyray_render::{
-    BackendInfo, FrameStats, Image, RayCounts, RenderError, RenderSettings, Renderer,
+    BackendInfo, FrameStats, Image, Presented, RayCounts, RenderError, RenderSettings, Renderer,
     TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
@@ -472,6 +472,12 @@ impl Renderer for GpuRenderer {
             height,
             pixels,
         })
+    }
+
+    fn present(&mut self) -> Result<Presented, RenderError> {
+        self.display_image()?;
+        self.ctx.wait()?;
+        Ok(Presented::Device)
     }
 
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {

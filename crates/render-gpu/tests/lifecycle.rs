@@ -3,7 +3,7 @@
 mod common;
 
 use common::gpu;
-use steadyray_render::{RenderError, RenderSettings, Renderer};
+use steadyray_render::{Presented, RenderError, RenderSettings, Renderer};
 use steadyray_scene::builtin;
 
 #[test]
@@ -20,6 +20,7 @@ fn needs_a_scene_then_a_frame() {
     };
     assert!(matches!(gpu.read_image(), Err(RenderError::NoFrame)));
     assert!(matches!(gpu.read_srgb8(), Err(RenderError::NoFrame)));
+    assert!(matches!(gpu.present(), Err(RenderError::NoFrame)));
     assert!(matches!(
         gpu.render(&scene.camera, 0.0, &s),
         Err(RenderError::NoScene)
@@ -30,4 +31,7 @@ fn needs_a_scene_then_a_frame() {
     gpu.load_scene(&builtin("spheres").unwrap()).unwrap();
     let image = gpu.read_image().unwrap();
     assert_eq!((image.width, image.height), (16, 16));
+    // Presenting tone-maps on the device: nothing comes back, and the frame stays readable.
+    assert_eq!(gpu.present().unwrap(), Presented::Device);
+    assert_eq!(gpu.read_image().unwrap(), image);
 }

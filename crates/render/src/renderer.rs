@@ -30,6 +30,15 @@ pub enum RenderError {
     Gpu(String),
 }
 
+/// Where a frame handed to a display by [`Renderer::present`] was tone-mapped.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Presented {
+    /// On the host: the 8-bit sRGB RGBA picture a window uploads ([`Image::to_srgb8_rgba`]).
+    Host(Vec<u8>),
+    /// On the device, into the buffer a present pass there reads: nothing reached the host.
+    Device,
+}
+
 /// Checks a scene time given to [`Renderer::render`]: any finite number of seconds.
 pub fn check_time(time_s: f64) -> Result<(), RenderError> {
     if time_s.is_finite() {
@@ -60,6 +69,12 @@ pub trait Renderer {
     /// The linear image of the last rendered frame: in the temporal mode, the accumulated
     /// history at its full size.
     fn read_image(&mut self) -> Result<Image, RenderError>;
+    /// Hands the last frame to a display the way this backend's window does, and returns
+    /// once that is done: the cost after rendering that a frame pays before it can be shown
+    /// (the real clock's hand-over, `docs/display.md`). The CPU backend tone-maps the image
+    /// to the 8-bit picture a window uploads; a GPU backend tone-maps it on the device into
+    /// the buffer its present pass reads, with no readback.
+    fn present(&mut self) -> Result<Presented, RenderError>;
     /// Turns the temporal mode on, with a history of `temporal`'s size, or off (`None`); in
     /// either case any history starts over. In the temporal mode every frame is jittered,
     /// rendered at its own settings' size (at most the history's) and accumulated into the

@@ -8,7 +8,7 @@ use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
 use steadyray_motion::{MotionTracker, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Image, RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{Image, Presented, RenderSettings, Renderer, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
 /// One rendered (or simulated) frame as the experiment sees it.
@@ -124,9 +124,13 @@ impl FrameSource for RendererSource {
 
     fn hand_over(&mut self) -> Result<HandOver> {
         let start = Instant::now();
-        let image = self.renderer.read_image()?;
-        let rgba = image.to_srgb8_rgba();
+        let presented = self.renderer.present()?;
         let ms = start.elapsed().as_secs_f64() * 1e3;
+        let image = self.renderer.read_image()?;
+        let rgba = match presented {
+            Presented::Host(rgba) => rgba,
+            Presented::Device => image.to_srgb8_rgba(),
+        };
         Ok(HandOver {
             ms,
             image: Some(Rgb8Image::from_rgba(image.width, image.height, &rgba)?),
