@@ -185,7 +185,10 @@ impl Renderer for CpuRenderer {
                 // Rays follow the history's aspect, so every sample lies where it lands.
                 let size = history.clock.settings();
                 let frame = camera.frame(size.width, size.height);
-                let temporal = history.clock.advance(frame, time_s, world.is_animated());
+                let temporal =
+                    history
+                        .clock
+                        .advance(frame, time_s, world.is_animated(), settings.spp);
                 if temporal.world_moved {
                     world.surface_moves(temporal.previous_time_s, time_s, &mut history.moves);
                 }

@@ -276,7 +276,8 @@ pub struct GpuTemporalParams {
     /// 1 when objects may have moved: `surface_count` entries of the motion table say how.
     pub world_moved: u32,
     pub surface_count: u32,
-    pub pad0: u32,
+    /// The frame's eye rays per pixel S (a frame pixel's sample count weighs its value).
+    pub spp: f32,
 }
 
 /// [`GpuSurfaceMotion::kind`] of a surface where it was.
@@ -579,7 +580,7 @@ mod tests {
                     still,
                     world_moved,
                     surface_count,
-                    pad0,
+                    spp,
                 }),
             ),
             (

@@ -22,10 +22,11 @@ pub(crate) const SHADER_SOURCE: &str = concat!(
     include_str!("shaders/tonemap.wgsl"),
 );
 
-/// The temporal resolve's WGSL module ([`crate::temporal`]): layouts, the sRGB rule, and
-/// the resolve and history tone map with their bindings.
+/// The temporal resolve's WGSL module ([`crate::temporal`]): layouts, the sample counts, the
+/// sRGB rule, and the resolve and history tone map with their bindings.
 pub(crate) const TEMPORAL_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
+    include_str!("shaders/sampling.wgsl"),
     include_str!("shaders/srgb.wgsl"),
     include_str!("shaders/temporal.wgsl"),
 );

@@ -323,7 +323,7 @@ impl Renderer for GpuRenderer {
         // it lands.
         let (frame_width, frame_height) = history.map_or((width, height), |h| (h.width, h.height));
         let cam = camera.frame(frame_width, frame_height);
-        let step = self.temporal.advance(cam, time_s, animated);
+        let step = self.temporal.advance(cam, time_s, animated, settings.spp);
         if let (Some(step), Some(scene)) = (step.filter(|s| s.world_moved), &self.scene) {
             self.temporal
                 .upload_moves(&self.ctx.device, &self.ctx.queue, |out| {

@@ -77,7 +77,7 @@ fn params(
         still: u32::from(frame.still),
         world_moved: u32::from(frame.world_moved),
         surface_count: surfaces,
-        ..Default::default()
+        spp: frame.spp,
     }
 }
 
@@ -170,10 +170,11 @@ impl TemporalPass {
         current: CameraFrame,
         time_s: f64,
         animated: bool,
+        spp: f32,
     ) -> Option<TemporalFrame> {
         self.history
             .as_mut()
-            .map(|h| h.clock.advance(current, time_s, animated))
+            .map(|h| h.clock.advance(current, time_s, animated, spp))
     }
 
     /// Uploads how the surfaces moved for the next resolve: `fill` writes the table into the

@@ -9,18 +9,21 @@ use crate::{RenderSettings, SettingsError};
 use glam::{BVec4A, Vec3, Vec4};
 use steadyray_scene::camera::CameraFrame;
 
-/// The most frames a pixel's history averages while the camera moves (its age is capped
-/// here, so the blend weight of a new sample never falls below 1 / (HISTORY_CAP + 1)): every
-/// frame resamples a moving history, and a longer one gathers more blur than it removes
-/// noise (on the corridor's sweep at 640x360, 3.5 pixels a frame, FLIP against the
-/// reference was lowest for caps of 5 to 8).
+/// The most samples a pixel's history stands for while the camera moves (its age, counted
+/// in samples, is capped here, so a new frame pixel of n samples never weighs less than
+/// n / (HISTORY_CAP + n)): every frame resamples a moving history, and a longer one gathers
+/// more blur than it removes noise (on the corridor's sweep at 640x360, 3.5 pixels a frame,
+/// S = 1, FLIP against the reference was lowest for caps of 5 to 8). Counting samples, not
+/// frames, lets a frame of many samples outweigh the blurred history it would otherwise
+/// be averaged into.
 pub const HISTORY_CAP: f32 = 8.0;
-/// The cap while the camera stands still: the history is then kept pixel for pixel, without
-/// resampling, and converges toward the reference.
+/// The cap while the camera stands still, in frames (STILL_CAP · n samples for a pixel of
+/// n samples a frame): the history is then kept pixel for pixel, without resampling, and
+/// converges toward the reference.
 pub const STILL_CAP: f32 = 64.0;
-/// The cap on pixels whose reprojection is only approximate (glass, curved mirrors) while
-/// the eye moves: their reflected or refracted image has a parallax that the reprojected
-/// point does not have, so they keep a short history.
+/// The cap, in samples, on pixels whose reprojection is only approximate (glass, curved
+/// mirrors) while the eye moves: their reflected or refracted image has a parallax that the
+/// reprojected point does not have, so they keep a short history.
 pub const SPECULAR_CAP: f32 = 4.0;
 /// A history tap's surface is seen again where its point lies within this fraction of the
 /// distance to the previous eye from the tangent plane of a surface seen now.
@@ -223,6 +226,9 @@ pub struct TemporalFrame {
     /// Whether the camera frame is the previous one exactly and no object moved: the
     /// history is then kept as it is, pixel for pixel, without geometry tests or clamp.
     pub still: bool,
+    /// The frame's eye rays per pixel S: a frame pixel's sample count
+    /// (`sampling::samples_for_pixel`) is what its value weighs in the blend.
+    pub spp: f32,
 }
 
 /// The host side of a history: its size, the number of frames it holds and the last
@@ -257,9 +263,15 @@ impl HistoryClock {
     }
 
     /// The next frame's [`TemporalFrame`] for camera frame `current` (made for the output
-    /// size) at scene time `time_s` of a scene that is `animated` or not, counting the
-    /// frame as accumulated.
-    pub fn advance(&mut self, current: CameraFrame, time_s: f64, animated: bool) -> TemporalFrame {
+    /// size) at scene time `time_s` of a scene that is `animated` or not, rendered at `spp`
+    /// eye rays per pixel, counting the frame as accumulated.
+    pub fn advance(
+        &mut self,
+        current: CameraFrame,
+        time_s: f64,
+        animated: bool,
+        spp: f32,
+    ) -> TemporalFrame {
         let k = self.frames;
         let j = jitter(k);
         let previous = self.previous.map(|(camera, _)| camera);
@@ -274,6 +286,7 @@ impl HistoryClock {
             world_moved,
             previous_time_s,
             still: previous == Some(current) && !world_moved,
+            spp,
         };
         self.frames = self.frames.wrapping_add(1);
         self.previous = Some((current, time_s));
@@ -405,24 +418,24 @@ mod tests {
         let a = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 60.0).frame(64, 32);
         let mut b = a;
         b.eye.x = 0.5;
-        let first = clock.advance(a, 0.0, true);
+        let first = clock.advance(a, 0.0, true, 1.0);
         assert_eq!(
             (first.index, first.previous, first.eye_moved),
             (0, None, false)
         );
         assert!(!first.still && !first.world_moved);
-        let second = clock.advance(a, 0.0, true);
+        let second = clock.advance(a, 0.0, true, 1.0);
         assert_eq!((second.index, second.previous), (1, Some(a)));
         assert!(!second.eye_moved && second.still);
-        let third = clock.advance(b, 0.0, true);
+        let third = clock.advance(b, 0.0, true, 1.0);
         assert!(third.eye_moved && !third.still);
         // Time runs: objects of an animated scene move, those of a static one do not.
-        let fourth = clock.advance(b, 0.5, true);
+        let fourth = clock.advance(b, 0.5, true, 1.0);
         assert!(fourth.world_moved && !fourth.still && fourth.previous_time_s == 0.0);
-        let fifth = clock.advance(b, 1.0, false);
+        let fifth = clock.advance(b, 1.0, false, 1.0);
         assert!(!fifth.world_moved && fifth.still);
         clock.reset();
-        let after = clock.advance(b, 1.0, false);
+        let after = clock.advance(b, 1.0, false, 1.0);
         assert_eq!((after.index, after.previous), (0, None));
     }
 

@@ -10,6 +10,7 @@
 
 use super::geometry::Geometry;
 use glam::Vec4;
+use steadyray_render::sampling::samples_for_pixel;
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{
     APPROX_FLAG, HISTORY_CAP, ID_MASK, MIRROR_FLAG, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP,
@@ -323,8 +324,9 @@ impl Inputs<'_> {
             };
             let approx = sample.tag & APPROX_FLAG != 0;
             let mirrored = sample.tag & MIRROR_FLAG != 0;
+            let n = samples_for_pixel(sx, sy, frame.spp) as f32;
             let cap = if frame.still {
-                STILL_CAP
+                STILL_CAP * n
             } else if (approx && (frame.eye_moved || frame.world_moved))
                 || (mirrored && frame.world_moved)
             {
@@ -335,16 +337,16 @@ impl Inputs<'_> {
             *colour = match (history, fresh) {
                 (Some((h, age)), true) => {
                     let a = age.min(cap);
-                    let alpha = 1.0 / (a + 1.0);
+                    let alpha = n / (a + n);
                     [
                         h[0] + (c[0] - h[0]) * alpha,
                         h[1] + (c[1] - h[1]) * alpha,
                         h[2] + (c[2] - h[2]) * alpha,
-                        a + 1.0,
+                        a + n,
                     ]
                 }
                 (Some((h, age)), false) => [h[0], h[1], h[2], age.min(cap)],
-                (None, true) => [c[0], c[1], c[2], 1.0],
+                (None, true) => [c[0], c[1], c[2], n],
                 (None, false) if current_ok => [c[0], c[1], c[2], 0.0],
                 (None, false) => [0.0; 4],
             };

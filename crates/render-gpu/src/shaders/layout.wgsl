@@ -116,7 +116,7 @@ struct TemporalParams {
     still: u32,
     world_moved: u32,
     surface_count: u32,
-    pad0: u32,
+    spp: f32,
 }
 
 // How a surface moved since the previous frame (GpuSurfaceMotion,

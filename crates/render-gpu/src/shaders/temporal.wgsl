@@ -327,21 +327,22 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
     let mirrored = (g.tag & MIRROR_FLAG) != 0u;
     let eye_moved = params.eye_moved != 0u;
     let world_moved = params.world_moved != 0u;
+    let n = f32(samples_for_pixel(sx, sy, params.spp));
     var cap = HISTORY_CAP;
     if params.still != 0u {
-        cap = STILL_CAP;
+        cap = STILL_CAP * n;
     } else if (approx && (eye_moved || world_moved)) || (mirrored && world_moved) {
         cap = SPECULAR_CAP;
     }
     var out = vec4<f32>(0.0);
     if kept.valid && fresh {
         let a = min(kept.age, cap);
-        let alpha = 1.0 / (a + 1.0);
-        out = vec4<f32>(kept.colour + (c - kept.colour) * alpha, a + 1.0);
+        let alpha = n / (a + n);
+        out = vec4<f32>(kept.colour + (c - kept.colour) * alpha, a + n);
     } else if kept.valid {
         out = vec4<f32>(kept.colour, min(kept.age, cap));
     } else if fresh {
-        out = vec4<f32>(c, 1.0);
+        out = vec4<f32>(c, n);
     } else if current_ok {
         out = vec4<f32>(c, 0.0);
     }
