@@ -15,8 +15,15 @@
 # into OUT/results.tar.gz after every stage, so a run cut short still returns what it did.
 #
 # On the device machine, after the recipe of ../shared/gpu/README.md (the Vulkan loader
-# unpacked from .gl/, the release binary in .gpu-bin/):
-#     scripts/gpu/temporal.sh "$OUT"
+# unpacked from .gl/, the release binary in .gpu-bin/), with ColorVideoVDP's wheels in .whl/
+# (here: python -m pip download --no-deps --only-binary=:all: --python-version 3.12
+#  --implementation cp --platform any -d .whl cvvdp==0.5.7 ffmpeg-python==0.2.0 future;
+# the device's python3 has torch, numpy and the rest):
+#     for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
+#     python3 -m pip install -q --no-index --no-deps --target /tmp/site .whl/*.whl
+#     PYTHONPATH=/tmp/site WGPU_BACKEND=vulkan RUST_LOG=warn HF_HUB_OFFLINE=1 \
+#         scripts/gpu/temporal.sh "$OUT"
+# (about 460 s on an H200; BUDGET_S, default 520, skips the stages that would not fit).
 # A dry run here on lavapipe, small and short:
 #     STEADYRAY=target/release/steadyray W=160 H=90 DURATION=0.5 REPEAT=2 REF_SPP=16 \
 #         xvfb-run -a scripts/gpu/temporal.sh /tmp/temporal-dry
