@@ -7,8 +7,8 @@ use crate::temporal::{Geometry, GeometrySink};
 use crate::world::World;
 use glam::Vec3A;
 use rayon::prelude::*;
-use steadyray_render::sampling::{sample_offset, samples_for_pixel};
-use steadyray_render::temporal::jittered;
+use steadyray_render::sampling::samples_for_pixel;
+use steadyray_render::temporal::jittered_sample;
 use steadyray_render::{MAX_DEPTH, RayCounts, RenderSettings};
 use steadyray_scene::camera::CameraFrame;
 
@@ -139,7 +139,7 @@ fn render_row(
         let n = samples_for_pixel(px, py, settings.spp);
         let mut sum = Vec3A::ZERO;
         for sample in 0..n {
-            let (u, v) = jittered(sample_offset(sample, n), pattern.jitter);
+            let (u, v) = jittered_sample(sample, n, pattern.jitter);
             let dir = Vec3A::from(frame.ray_dir(px, py, u, v, width, height));
             let id = SampleId {
                 px,

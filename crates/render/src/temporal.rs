@@ -5,6 +5,7 @@
 //! acceptance, clamp and blend. The per-pixel pass itself is written once per backend
 //! (`render-cpu/src/temporal/`, `temporal.wgsl`) from these rules.
 
+use crate::sampling::sample_offset;
 use crate::{RenderSettings, SettingsError};
 use glam::{BVec4A, Vec3, Vec4};
 use steadyray_scene::camera::CameraFrame;
@@ -126,6 +127,28 @@ fn frac(t: f32) -> f32 {
 #[inline]
 pub fn jittered(offset: (f32, f32), j: [f32; 2]) -> (f32, f32) {
     (frac(offset.0 + j[0]), frac(offset.1 + j[1]))
+}
+
+/// The sub-pixel position of sample `i` of a pixel that takes `n` samples in a frame of
+/// jitter `j`: its [`crate::sampling::sample_offset`] moved by `j` ([`jittered`]), the
+/// mirrored sample of each pair by −`j`, so that every pair stays mirrored about the pixel
+/// centre and a pixel of two or more samples keeps its centroid there in every frame (moving
+/// the whole pattern by `j` shifted each frame's image by up to a fifth of a pixel, which
+/// FLIP scored 1.25x worse than the plain frame at S = 16). The centre sample of an odd
+/// n ≥ 3 stays put; the one sample of n = 1 moves by `j`, which is what the history gathers
+/// its sub-pixel detail from.
+pub fn jittered_sample(i: u32, n: u32, j: [f32; 2]) -> (f32, f32) {
+    let offset = sample_offset(i, n);
+    let odd = n & 1;
+    if n <= 1 {
+        jittered(offset, j)
+    } else if i < odd {
+        offset
+    } else if (i - odd) & 1 == 1 {
+        jittered(offset, [-j[0], -j[1]])
+    } else {
+        jittered(offset, j)
+    }
 }
 
 /// Where a low-resolution pixel's value lands inside it: its centre moved by the jitter,
@@ -329,6 +352,27 @@ mod tests {
             }
         }
         assert_eq!(jittered((0.3, 0.7), jitter(0)), (0.3, 0.7));
+    }
+
+    #[test]
+    fn jittered_samples_keep_their_centroid_at_the_centre() {
+        for k in 1..40 {
+            let j = jitter(k);
+            assert_eq!(jittered_sample(0, 1, j), jittered(sample_offset(0, 1), j));
+            for n in 2..=9 {
+                let (mut u, mut v) = (0.0f64, 0.0f64);
+                for i in 0..n {
+                    let (a, b) = jittered_sample(i, n, j);
+                    assert!((0.0..1.0).contains(&a) && (0.0..1.0).contains(&b));
+                    (u, v) = (u + f64::from(a), v + f64::from(b));
+                }
+                let centroid = [u / f64::from(n), v / f64::from(n)];
+                assert!(
+                    centroid.iter().all(|c| (c - 0.5).abs() < 1e-5),
+                    "n = {n}, k = {k}: {centroid:?}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -114,7 +114,7 @@ fn render_pixel(px: u32, py: u32) {
     let n = samples_for_pixel(px, py, frame.spp);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < n; i++) {
-        let dir = eye_ray_dir(px, py, jittered(sample_offset(i, n), frame.jitter));
+        let dir = eye_ray_dir(px, py, jittered_sample(i, n, frame.jitter));
         record_begin(frame.temporal != 0u && i == 0u, frame.eye, dir);
         sum += trace_sample(px, py, i + frame.sample_base, frame.eye, dir);
     }

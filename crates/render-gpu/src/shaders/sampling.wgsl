@@ -44,6 +44,24 @@ fn jittered(offset: vec2<f32>, j: vec2<f32>) -> vec2<f32> {
     return t - floor(t);
 }
 
+// Sample i of n in a frame of jitter j: each mirrored pair moved by +j and -j, so that a
+// pixel of two or more samples keeps its centroid at the centre; the centre sample of an
+// odd n >= 3 stays put (steadyray_render::temporal::jittered_sample).
+fn jittered_sample(i: u32, n: u32, j: vec2<f32>) -> vec2<f32> {
+    let offset = sample_offset(i, n);
+    let odd = n & 1u;
+    if n <= 1u {
+        return jittered(offset, j);
+    }
+    if i < odd {
+        return offset;
+    }
+    if ((i - odd) & 1u) == 1u {
+        return jittered(offset, -j);
+    }
+    return jittered(offset, j);
+}
+
 var<private> BAYER8: array<u32, 64> = array<u32, 64>(
     0u, 32u, 8u, 40u, 2u, 34u, 10u, 42u,
     48u, 16u, 56u, 24u, 50u, 18u, 58u, 26u,
