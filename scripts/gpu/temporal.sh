@@ -6,8 +6,10 @@
 #      frames of history, alternating; render_ms by GPU timestamps);
 #   2. still: a still corridor view, one frame at S against the history of 31 frames (1 s at
 #      the paper's band) at S, both against a reference at S = STILL_REF_SPP (steadyray compare);
-#   3. paper, refresh, refresh2: the corridor under the real clock at the paper's band and at
-#      one and two refreshes, each controller without and with the history, displayed FLIP,
+#   3. paper, refresh, paper-reversed, refresh2: the corridor under the real clock at the
+#      paper's band, at one refresh, at the paper's band again with the history's run first
+#      (the GPU's clocks follow its load), and at two refreshes, each controller without and
+#      with the history, displayed FLIP,
 #      the screen videos (references at S = REF_SPP), and their JOD (scripts/jod/jod.py)
 #      when python3 has torch and pycvvdp (carry the wheels cvvdp, ffmpeg-python and future,
 #      installed with --target and PYTHONPATH: see the device recipe).
@@ -23,7 +25,8 @@
 #     python3 -m pip install -q --no-index --no-deps --target /tmp/site .whl/*.whl
 #     PYTHONPATH=/tmp/site WGPU_BACKEND=vulkan RUST_LOG=warn HF_HUB_OFFLINE=1 \
 #         scripts/gpu/temporal.sh "$OUT"
-# (about 460 s on an H200; BUDGET_S, default 520, skips the stages that would not fit).
+# (pass, still, paper, refresh and refresh2 took about 460 s on an H200; BUDGET_S, default
+# 520, skips the stages that would not fit; STAGES lists the stages to run, in order).
 # A dry run here on lavapipe, small and short:
 #     STEADYRAY=target/release/steadyray W=160 H=90 DURATION=0.5 REPEAT=2 REF_SPP=16 \
 #         xvfb-run -a scripts/gpu/temporal.sh /tmp/temporal-dry
@@ -66,19 +69,17 @@ jod() {
 }
 
 size=(--backend gpu --width "$w" --height "$h")
-if left 30 "pass"; then
-    view=(--spp 1 --depth 16 --time 0.5 --stats)
+stage_pass() {
+    local view=(--spp 1 --depth 16 --time 0.5 --stats)
     for _ in $(seq "$repeat"); do
         "$bin" render "${size[@]}" "${view[@]}" --output "$work/plain.png" |
             tail -n 1 >>"$work/pass-plain.jsonl"
         "$bin" render "${size[@]}" "${view[@]}" --temporal 30 --output "$work/temporal.png" |
             tail -n 1 >>"$work/pass-temporal.jsonl"
     done
-    pack
-fi
-
-if left 40 "still"; then
-    still=(render "${size[@]}" --yaw 20 --depth 16)
+}
+stage_still() {
+    local still=(render "${size[@]}" --yaw 20 --depth 16)
     "$bin" "${still[@]}" --spp "$still_ref_spp" --output "$work/still-reference.png" >/dev/null
     for s in $still_spp; do
         "$bin" "${still[@]}" --spp "$s" --output "$work/still-one-$s.png" >/dev/null
@@ -89,35 +90,48 @@ if left 40 "still"; then
                 >>"$work/still.jsonl"
         done
     done
-    pack
-fi
+}
 
 bench=(bench "${size[@]}" --clock real --duration "$duration" --quality --every 4
     --reference-spp "$ref_spp")
-# Runs one bench into $work/$1 with its video in $work/$1-video (the references of an
-# earlier bench linked in: same scene, size, rate and length), then its JOD.
+references=""
+# Runs one bench into $work/$1 with its video in $work/$1-video (the references of the first
+# bench linked in: same scene, size, rate and length), then its JOD.
 run_bench() {
     local name=$1
     shift
     local video="$work/$name-video"
     mkdir -p "$video"
-    if [[ -d "$work/paper-video/reference" && ! -e "$video/reference" ]]; then
-        cp -al "$work/paper-video/reference" "$video/reference"
+    if [[ -n "$references" && ! -e "$video/reference" ]]; then
+        cp -al "$references" "$video/reference"
     fi
     "$bin" "${bench[@]}" "$@" --video "$video" --out "$work/$name"
+    if [[ -z "$references" ]]; then
+        references="$video/reference"
+    fi
     pack
     jod "$video" "$work/$name"
     rm -rf "$video"/*/displayed "$video"/*.y4m "$video"/*/*.y4m
     pack
 }
-if left 150 "paper"; then
-    run_bench paper --tmin 15 --tmax 20 --controllers predictive --temporal both
-fi
-if left 200 "refresh"; then
-    run_bench refresh --band refresh --controllers hysteresis,predictive --temporal both
-fi
-if left 110 "refresh2"; then
-    run_bench refresh2 --band refresh:2 --controllers predictive --temporal both
-fi
+paper=(--tmin 15 --tmax 20 --controllers predictive)
+# The GPU's clocks follow its load, so the run that comes second may start on other clocks:
+# `paper-reversed` runs the paper's band again with the history first.
+for stage in ${STAGES:-pass still paper refresh paper-reversed refresh2}; do
+    case $stage in
+        pass) left 30 pass && stage_pass && pack ;;
+        still) left 40 still && stage_still && pack ;;
+        paper) left 150 paper && run_bench paper "${paper[@]}" --temporal both ;;
+        refresh) left 200 refresh &&
+            run_bench refresh --band refresh --controllers hysteresis,predictive --temporal both ;;
+        paper-reversed) left 160 paper-reversed &&
+            run_bench paper-history-first "${paper[@]}" --temporal on &&
+            run_bench paper-plain-second "${paper[@]}" --temporal off ;;
+        refresh2) left 110 refresh2 &&
+            run_bench refresh2 --band refresh:2 --controllers predictive --temporal both ;;
+        *) echo "unknown stage $stage (pass, still, paper, refresh, paper-reversed, refresh2)"
+            exit 2 ;;
+    esac
+done
 pack
 echo "wrote $out/results.tar.gz after $SECONDS s"
