@@ -230,7 +230,12 @@ impl Renderer for CpuRenderer {
     }
 
     fn present(&mut self) -> Result<Presented, RenderError> {
-        Ok(Presented::Host(self.read_image()?.to_srgb8_rgba()))
+        let image = self.read_image()?;
+        Ok(Presented::Host {
+            width: image.width,
+            height: image.height,
+            rgba: image.to_srgb8_rgba(),
+        })
     }
 
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {

@@ -93,8 +93,13 @@ fn presenting_hands_over_the_tone_mapped_frame() {
     let mut r = loaded(&s);
     assert!(matches!(r.present(), Err(RenderError::NoFrame)));
     r.render(&s.camera, 0.0, &settings(9, 7, 1.0, 2)).unwrap();
-    let want = r.read_image().unwrap().to_srgb8_rgba();
-    assert_eq!(r.present().unwrap(), Presented::Host(want));
+    let image = r.read_image().unwrap();
+    let want = Presented::Host {
+        width: 9,
+        height: 7,
+        rgba: image.to_srgb8_rgba(),
+    };
+    assert_eq!(r.present().unwrap(), want);
 }
 
 #[test]

@@ -33,8 +33,13 @@ pub enum RenderError {
 /// Where a frame handed to a display by [`Renderer::present`] was tone-mapped.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Presented {
-    /// On the host: the 8-bit sRGB RGBA picture a window uploads ([`Image::to_srgb8_rgba`]).
-    Host(Vec<u8>),
+    /// On the host: the 8-bit sRGB RGBA picture a window uploads ([`Image::to_srgb8_rgba`]),
+    /// `width × height` pixels.
+    Host {
+        width: u32,
+        height: u32,
+        rgba: Vec<u8>,
+    },
     /// On the device, into the buffer a present pass there reads: nothing reached the host.
     Device,
 }

@@ -126,14 +126,22 @@ impl FrameSource for RendererSource {
         let start = Instant::now();
         let presented = self.renderer.present()?;
         let ms = start.elapsed().as_secs_f64() * 1e3;
-        let image = self.renderer.read_image()?;
-        let rgba = match presented {
-            Presented::Host(rgba) => rgba,
-            Presented::Device => image.to_srgb8_rgba(),
+        // The picture the bench keeps for its scores: the one presented when it reached the
+        // host, else the frame read back now (outside the hand-over's time).
+        let picture = match presented {
+            Presented::Host {
+                width,
+                height,
+                rgba,
+            } => Rgb8Image::from_rgba(width, height, &rgba)?,
+            Presented::Device => {
+                let image = self.renderer.read_image()?;
+                Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba())?
+            }
         };
         Ok(HandOver {
             ms,
-            image: Some(Rgb8Image::from_rgba(image.width, image.height, &rgba)?),
+            image: Some(picture),
         })
     }
 
