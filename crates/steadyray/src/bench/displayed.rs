@@ -66,24 +66,20 @@ impl TimedReferences {
         pairs: impl IntoIterator<Item = (f64, f64)>,
         pixels_per_degree: f32,
     ) -> Result<()> {
-        let mut missing: Vec<(f64, f64)> = pairs
+        let missing: BTreeMap<(i64, i64), (f64, f64)> = pairs
             .into_iter()
-            .filter(|&(then_s, now_s)| {
-                let key = (time_key(then_s), time_key(now_s));
-                key.0 != key.1 && !self.age_flips.contains_key(&key)
-            })
+            .map(|(then_s, now_s)| ((time_key(then_s), time_key(now_s)), (then_s, now_s)))
+            .filter(|(key, _)| key.0 != key.1 && !self.age_flips.contains_key(key))
             .collect();
-        missing.sort_by_key(|&(then_s, now_s)| (time_key(then_s), time_key(now_s)));
-        missing.dedup_by_key(|&mut (then_s, now_s)| (time_key(then_s), time_key(now_s)));
         let measured = missing
             .par_iter()
-            .map(|&(then_s, now_s)| {
+            .map(|(&key, &(then_s, now_s))| {
                 let flip = steadyray_quality::flip_at(
                     self.at(now_s)?,
                     self.at(then_s)?,
                     pixels_per_degree,
                 )?;
-                Ok(((time_key(then_s), time_key(now_s)), flip.mean()))
+                Ok((key, flip.mean()))
             })
             .collect::<Result<Vec<_>>>()?;
         self.age_flips.extend(measured);
