@@ -21,10 +21,15 @@ pub const BVH_EMPTY: u32 = steadyray_accel::GPU_EMPTY;
 
 /// Workgroups are `WORKGROUP_SIZE` × `WORKGROUP_SIZE` threads, one thread per pixel.
 pub const WORKGROUP_SIZE: u32 = 8;
-/// Ray counters per workgroup at most: depths 0..=MAX_DEPTH, then shadow rays, then the
-/// carries out of the shadow counter (a workgroup may trace more than 2³² shadow rays with
-/// many lights), then the chains the depth limit stopped (`RayCounts::stopped`).
-pub const COUNTER_SLOTS: u32 = MAX_DEPTH + 4;
+/// Ray counters per workgroup of a frame of depth `max_depth`: depths 0..=max_depth, then
+/// shadow rays, then the carries out of the shadow counter (a workgroup may trace more than
+/// 2³² shadow rays with many lights), then the chains the depth limit stopped
+/// (`RayCounts::stopped`).
+pub const fn counter_stride(max_depth: u32) -> u32 {
+    max_depth + 4
+}
+/// Ray counters per workgroup at most: [`counter_stride`] at MAX_DEPTH.
+pub const COUNTER_SLOTS: u32 = counter_stride(MAX_DEPTH);
 /// Threads of the ray-count reduction workgroup.
 pub const REDUCE_SIZE: u32 = 256;
 

@@ -4,7 +4,7 @@ use crate::adapter::{AdapterSummary, GpuOptions};
 use crate::buffers::{FrameBuffers, TOTALS_BYTES};
 use crate::device::GpuContext;
 use crate::error::{gpu_error, scoped};
-use crate::layout::{GpuFrame, WORKGROUP_SIZE};
+use crate::layout::{GpuFrame, WORKGROUP_SIZE, counter_stride};
 use crate::pipeline::{Pipelines, binding, buffer_entry};
 use crate::scene_buffers::{GpuWorld, PackedScene, SceneBuffers};
 use crate::temporal::TemporalPass;
@@ -310,7 +310,7 @@ impl Renderer for GpuRenderer {
         let groups_x = width.div_ceil(WORKGROUP_SIZE);
         let groups_y = height.div_ceil(WORKGROUP_SIZE);
         let group_count = groups_x * groups_y;
-        let counter_stride = settings.max_depth + 4;
+        let counter_stride = counter_stride(settings.max_depth);
         let counters = u64::from(group_count) * u64::from(counter_stride);
         let history = self.temporal.settings();
         if let Some(history) = history {
