@@ -26,7 +26,8 @@
 #     PYTHONPATH=/tmp/site WGPU_BACKEND=vulkan RUST_LOG=warn HF_HUB_OFFLINE=1 \
 #         scripts/gpu/temporal.sh "$OUT"
 # (pass, still, paper, refresh and refresh2 took about 460 s on an H200; BUDGET_S, default
-# 520, skips the stages that would not fit; STAGES lists the stages to run, in order).
+# 520, skips the stages that would not fit; STAGES lists the stages to run, in order;
+# REFRESH_CONTROLLERS, default hysteresis,predictive, the controllers of `refresh`).
 # A dry run here on lavapipe, small and short:
 #     STEADYRAY=target/release/steadyray W=160 H=90 DURATION=0.5 REPEAT=2 REF_SPP=16 \
 #         xvfb-run -a scripts/gpu/temporal.sh /tmp/temporal-dry
@@ -123,7 +124,8 @@ for stage in ${STAGES:-pass still paper refresh paper-reversed refresh2}; do
         still) left 40 still && stage_still && pack ;;
         paper) left 150 paper && run_bench paper "${paper[@]}" --temporal both ;;
         refresh) left 200 refresh &&
-            run_bench refresh --band refresh --controllers hysteresis,predictive --temporal both ;;
+            run_bench refresh --band refresh --controllers "${REFRESH_CONTROLLERS:-hysteresis,predictive}" \
+                --temporal both ;;
         paper-reversed) left 160 paper-reversed &&
             run_bench paper-history-first "${paper[@]}" --temporal on &&
             run_bench paper-plain-second "${paper[@]}" --temporal off ;;

@@ -29,8 +29,8 @@ use render::{FrameOutputs, SamplePattern};
 use std::time::Instant;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::{
-    BackendInfo, FrameStats, Image, MAX_DEPTH, Presented, RenderError, RenderSettings, Renderer,
-    SettingsError, TemporalSettings, TimingSource, check_time,
+    BackendInfo, FrameStats, Image, MAX_DEPTH, Picture, Presented, RenderError, RenderSettings,
+    Renderer, SettingsError, TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 use temporal::History;
@@ -230,8 +230,12 @@ impl Renderer for CpuRenderer {
     }
 
     fn present(&mut self) -> Result<Presented, RenderError> {
+        Ok(Presented::Host(self.read_picture()?))
+    }
+
+    fn read_picture(&mut self) -> Result<Picture, RenderError> {
         let image = self.read_image()?;
-        Ok(Presented::Host {
+        Ok(Picture {
             width: image.width,
             height: image.height,
             rgba: image.to_srgb8_rgba(),

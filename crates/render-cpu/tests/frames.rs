@@ -4,7 +4,7 @@ mod common;
 
 use common::*;
 use steadyray_render::sampling::samples_for_pixel;
-use steadyray_render::{Presented, RenderError, RenderSettings, Renderer, SettingsError};
+use steadyray_render::{Picture, Presented, RenderError, RenderSettings, Renderer, SettingsError};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_scene::{Shape, Transform, TriangleMesh, Vec3};
 
@@ -94,12 +94,13 @@ fn presenting_hands_over_the_tone_mapped_frame() {
     assert!(matches!(r.present(), Err(RenderError::NoFrame)));
     r.render(&s.camera, 0.0, &settings(9, 7, 1.0, 2)).unwrap();
     let image = r.read_image().unwrap();
-    let want = Presented::Host {
+    let want = Picture {
         width: 9,
         height: 7,
         rgba: image.to_srgb8_rgba(),
     };
-    assert_eq!(r.present().unwrap(), want);
+    assert_eq!(r.present().unwrap(), Presented::Host(want.clone()));
+    assert_eq!(r.read_picture().unwrap(), want);
 }
 
 #[test]

@@ -13,8 +13,8 @@ use std::time::Instant;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::two_level::SceneLayout;
 use steadyray_render::{
-    BackendInfo, FrameStats, Image, Presented, RayCounts, RenderError, RenderSettings, Renderer,
-    TemporalSettings, TimingSource, check_time,
+    BackendInfo, FrameStats, Image, Picture, Presented, RayCounts, RenderError, RenderSettings,
+    Renderer, TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 
@@ -478,6 +478,16 @@ impl Renderer for GpuRenderer {
         self.display_image()?;
         self.ctx.wait()?;
         Ok(Presented::Device)
+    }
+
+    fn read_picture(&mut self) -> Result<Picture, RenderError> {
+        let rgba = self.read_srgb8()?;
+        let last = self.last_frame.ok_or(RenderError::NoFrame)?;
+        Ok(Picture {
+            width: last.width,
+            height: last.height,
+            rgba,
+        })
     }
 
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {

@@ -21,6 +21,7 @@ fn needs_a_scene_then_a_frame() {
     assert!(matches!(gpu.read_image(), Err(RenderError::NoFrame)));
     assert!(matches!(gpu.read_srgb8(), Err(RenderError::NoFrame)));
     assert!(matches!(gpu.present(), Err(RenderError::NoFrame)));
+    assert!(matches!(gpu.read_picture(), Err(RenderError::NoFrame)));
     assert!(matches!(
         gpu.render(&scene.camera, 0.0, &s),
         Err(RenderError::NoScene)
@@ -34,4 +35,8 @@ fn needs_a_scene_then_a_frame() {
     // Presenting tone-maps on the device: nothing comes back, and the frame stays readable.
     assert_eq!(gpu.present().unwrap(), Presented::Device);
     assert_eq!(gpu.read_image().unwrap(), image);
+    // The presented picture, read back: the device's own tone map of that frame.
+    let picture = gpu.read_picture().unwrap();
+    assert_eq!((picture.width, picture.height), (16, 16));
+    assert_eq!(picture.rgba, gpu.read_srgb8().unwrap());
 }

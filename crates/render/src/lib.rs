@@ -18,7 +18,7 @@ pub mod tonemap;
 pub mod two_level;
 
 pub use image::Image;
-pub use renderer::{BackendInfo, Presented, RenderError, Renderer, check_time};
+pub use renderer::{BackendInfo, Picture, Presented, RenderError, Renderer, check_time};
 pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError};
 pub use stats::{FrameStats, RayCounts, TimingSource};
 pub use temporal::TemporalSettings;

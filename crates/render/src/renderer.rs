@@ -30,16 +30,20 @@ pub enum RenderError {
     Gpu(String),
 }
 
+/// A frame's 8-bit sRGB picture on the host: `width × height` RGBA pixels (alpha 255), row
+/// major, top row first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Picture {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+}
+
 /// Where a frame handed to a display by [`Renderer::present`] was tone-mapped.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Presented {
-    /// On the host: the 8-bit sRGB RGBA picture a window uploads ([`Image::to_srgb8_rgba`]),
-    /// `width × height` pixels.
-    Host {
-        width: u32,
-        height: u32,
-        rgba: Vec<u8>,
-    },
+    /// On the host: the picture a window uploads ([`Image::to_srgb8_rgba`]).
+    Host(Picture),
     /// On the device, into the buffer a present pass there reads: nothing reached the host.
     Device,
 }
@@ -80,6 +84,12 @@ pub trait Renderer {
     /// to the 8-bit picture a window uploads; a GPU backend tone-maps it on the device into
     /// the buffer its present pass reads, with no readback.
     fn present(&mut self) -> Result<Presented, RenderError>;
+    /// The last frame's picture as this backend's display shows it, read to the host (for
+    /// scores and videos, outside any timing): a GPU backend tone-maps on the device and
+    /// reads back the 8-bit picture, a quarter of the linear image's bytes and no tone map on
+    /// the host, so a caller that keeps every frame leaves the device idle for less time
+    /// between frames.
+    fn read_picture(&mut self) -> Result<Picture, RenderError>;
     /// Turns the temporal mode on, with a history of `temporal`'s size, or off (`None`); in
     /// either case any history starts over. In the temporal mode every frame is jittered,
     /// rendered at its own settings' size (at most the history's) and accumulated into the

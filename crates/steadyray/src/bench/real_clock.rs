@@ -9,6 +9,7 @@ use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use std::collections::BTreeMap;
+use std::time::Instant;
 use steadyray_control::{Band, Bounds, Controller, FrameRecord, summarize};
 use steadyray_display::model::{TIME_EPS_MS, refresh_at_or_after};
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, Timeline};
@@ -132,6 +133,7 @@ pub fn run_controller_real(
     let mut pictures = BTreeMap::new();
     let (mut rows, mut records, mut world_s) = (Vec::new(), Vec::new(), Vec::new());
     let mut shown_ms = 0u64;
+    let (started, mut rendering_ms) = (Instant::now(), 0.0);
     while let Some(slot) = clock.next_frame() {
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
@@ -144,6 +146,7 @@ pub fn run_controller_real(
             .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
         let handed = source.hand_over()?;
         let tp_ms = m.report.tp_ms;
+        rendering_ms += tp_ms + handed.ms;
         if let Err(e) = controller.observe(&m.report) {
             log::warn!("{name}: frame {}: report refused: {e}", slot.index);
         }
@@ -180,6 +183,15 @@ pub fn run_controller_real(
         shown_ms = shown_ms.max(now_ms);
     }
     progress.inc((end as u64).saturating_sub(shown_ms));
+    // A GPU's clocks follow how busy it is, so say how much of the run's wall time the frames
+    // took: the rest is the bench's own work between them (reading pictures back, keeping
+    // them), which a window would not do.
+    let wall_ms = started.elapsed().as_secs_f64() * 1e3;
+    eprintln!(
+        "bench: {name}: rendering and hand-over took {:.0} % of the run's {:.1} s of wall time",
+        100.0 * rendering_ms / wall_ms,
+        wall_ms / 1e3
+    );
     if keep.any_in(screen.visible_ms, f64::INFINITY, period, end)
         && let Some(picture) = screen.picture
     {

@@ -127,18 +127,12 @@ impl FrameSource for RendererSource {
         let presented = self.renderer.present()?;
         let ms = start.elapsed().as_secs_f64() * 1e3;
         // The picture the bench keeps for its scores: the one presented when it reached the
-        // host, else the frame read back now (outside the hand-over's time).
+        // host, else the device's picture read back now (outside the hand-over's time).
         let picture = match presented {
-            Presented::Host {
-                width,
-                height,
-                rgba,
-            } => Rgb8Image::from_rgba(width, height, &rgba)?,
-            Presented::Device => {
-                let image = self.renderer.read_image()?;
-                Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba())?
-            }
+            Presented::Host(picture) => picture,
+            Presented::Device => self.renderer.read_picture()?,
         };
+        let picture = Rgb8Image::from_rgba(picture.width, picture.height, &picture.rgba)?;
         Ok(HandOver {
             ms,
             image: Some(picture),
