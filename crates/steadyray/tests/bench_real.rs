@@ -66,6 +66,8 @@ fn frames_and_refreshes_are_what_the_display_model_says() {
     let mut rendered = Vec::new();
     for c in summary["controllers"].as_array().unwrap() {
         let name = c["name"].as_str().unwrap();
+        // Simulated frames take no wall time: no share of it is reported.
+        assert!(c.get("busy_pct").is_none(), "{name}");
         let rows = rows(&out, name);
         // Replay the display model on the measured times (as written, to 4 decimals).
         let mut clock =
@@ -265,6 +267,10 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
     assert!(fixed["frame_flip_mean"].as_f64().unwrap() <= flip + 1e-9);
     let age_flip = fixed["age_flip_mean"].as_f64().unwrap();
     assert!((0.0..0.5).contains(&age_flip), "{age_flip}");
+    // The CPU renderer's frames take wall time: their share of the run's is reported.
+    let busy = fixed["busy_pct"].as_f64().unwrap();
+    assert!(busy > 0.0 && busy <= 100.0, "{busy}");
+    assert!(first.contains("of the run's"), "{first}");
     let second = run();
     assert!(second.contains("reusing the references"), "{second}");
     let again: Value =

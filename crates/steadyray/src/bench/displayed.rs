@@ -287,6 +287,7 @@ mod tests {
             pictures,
             world_s,
             quality: None,
+            busy_pct: None,
         };
         (run, references)
     }

@@ -83,6 +83,10 @@ pub struct DisplayRun {
     pub world_s: Vec<f64>,
     /// The screen against the references (`bench --quality`), measured after the runs.
     pub quality: Option<DisplayedQuality>,
+    /// The frames' share (rendering and hand-over) of the run's wall time, %: the rest is
+    /// the bench's own work between frames. A GPU's clocks follow how busy it is, so a low
+    /// share slows its frames; `None` where the frames were not timed in wall time.
+    pub busy_pct: Option<f64>,
 }
 
 impl DisplayRun {
@@ -183,15 +187,17 @@ pub fn run_controller_real(
         shown_ms = shown_ms.max(now_ms);
     }
     progress.inc((end as u64).saturating_sub(shown_ms));
-    // A GPU's clocks follow how busy it is, so say how much of the run's wall time the frames
-    // took: the rest is the bench's own work between them (reading pictures back, keeping
-    // them), which a window would not do.
     let wall_ms = started.elapsed().as_secs_f64() * 1e3;
-    eprintln!(
-        "bench: {name}: rendering and hand-over took {:.0} % of the run's {:.1} s of wall time",
-        100.0 * rendering_ms / wall_ms,
-        wall_ms / 1e3
-    );
+    let busy_pct = source
+        .takes_wall_time()
+        .then(|| 100.0 * rendering_ms / wall_ms);
+    if let Some(busy) = busy_pct {
+        eprintln!(
+            "bench: {name}: rendering and hand-over took {busy:.0} % of the run's {:.1} s of \
+             wall time",
+            wall_ms / 1e3
+        );
+    }
     if keep.any_in(screen.visible_ms, f64::INFINITY, period, end)
         && let Some(picture) = screen.picture
     {
@@ -211,6 +217,7 @@ pub fn run_controller_real(
             pictures,
             world_s,
             quality: None,
+            busy_pct,
         }),
     })
 }
@@ -247,6 +254,9 @@ mod tests {
         }
         fn hand_over(&mut self) -> Result<HandOver> {
             self.inner.hand_over()
+        }
+        fn takes_wall_time(&self) -> bool {
+            self.inner.takes_wall_time()
         }
         fn load_changes(&self, n: u32) -> Option<Vec<usize>> {
             self.inner.load_changes(n)

@@ -79,6 +79,10 @@ struct ControllerEntry<'a> {
     /// What the viewer saw (real clock).
     #[serde(flatten)]
     display: Option<&'a DisplayFigures>,
+    /// The frames' share of the run's wall time, % (real clock): how busy the bench kept
+    /// the renderer.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    busy_pct: Option<f64>,
     /// The screen against the world at each sampled refresh (real clock, `--quality`).
     #[serde(flatten)]
     displayed: Option<DisplayedEntry>,
@@ -166,6 +170,7 @@ pub fn write_summary(
                 flip_mean: r.flip.map(|f| f.0),
                 flip_p95: r.flip.map(|f| f.1),
                 display: r.display.as_ref().map(|d| &d.figures),
+                busy_pct: r.display.as_ref().and_then(|d| d.busy_pct),
                 displayed: r
                     .display
                     .as_ref()

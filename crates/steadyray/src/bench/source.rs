@@ -54,11 +54,13 @@ pub trait FrameSource {
     fn path_duration_s(&self) -> f64;
     /// Renders the frame at `at` at quality `q`.
     fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured>;
-    /// Hands the last frame to the display and measures what that costs: a renderer's frame is
-    /// read back and tone-mapped to the 8-bit picture a window would upload (the CPU
-    /// backend's way to the screen; on a GPU it is more than a present costs); the simulated
-    /// renderer takes [`SIM_HAND_OVER_MS`].
+    /// Hands the last frame to the display and measures what that costs: a renderer's own
+    /// way to a window (`Renderer::present`), with its picture read back for the scores
+    /// outside that time; the simulated renderer takes [`SIM_HAND_OVER_MS`].
     fn hand_over(&mut self) -> Result<HandOver>;
+    /// Whether a frame's Tp and hand-over are wall time spent in these calls (a renderer),
+    /// not a simulated time: only then is their share of a run's wall time a measurement.
+    fn takes_wall_time(&self) -> bool;
     /// Frames where the load changes suddenly by construction, when known.
     fn load_changes(&self, n: u32) -> Option<Vec<usize>>;
     /// The linear image of the last frame (read back outside any timing), or `None` for a
@@ -137,6 +139,10 @@ impl FrameSource for RendererSource {
             ms,
             image: Some(picture),
         })
+    }
+
+    fn takes_wall_time(&self) -> bool {
+        true
     }
 
     fn load_changes(&self, _n: u32) -> Option<Vec<usize>> {
@@ -252,6 +258,10 @@ impl FrameSource for SimulatedSource {
             ms: SIM_HAND_OVER_MS,
             image: None,
         })
+    }
+
+    fn takes_wall_time(&self) -> bool {
+        false
     }
 
     fn load_changes(&self, n: u32) -> Option<Vec<usize>> {

@@ -223,6 +223,10 @@ impl FrameSource for StimulusSource<'_> {
         })
     }
 
+    fn takes_wall_time(&self) -> bool {
+        false
+    }
+
     fn load_changes(&self, _n: u32) -> Option<Vec<usize>> {
         None
     }
@@ -269,6 +273,7 @@ fn stimulus_run(
         pictures,
         world_s,
         quality: None,
+        busy_pct: None,
     })
 }
 
