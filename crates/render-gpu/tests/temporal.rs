@@ -83,6 +83,7 @@ fn a_sweep_with_changing_scale_and_quality() {
         (0.75, 2.5, 4),
         (1.0, 1.5, 8),
         (0.25, 1.0, 3),
+        (0.5, 4.0, 5),
     ];
     let steps: Vec<Step> = (0..15)
         .map(|k| {

@@ -176,6 +176,17 @@ pub fn covering(x: u32, full: u32, low: u32) -> u32 {
     (floor((x as f32 + 0.5) * low as f32 / full as f32) as u32).min(low - 1)
 }
 
+/// The tent weight, along one axis, of low-resolution column `c`'s centre at the centre of
+/// full-resolution column `x`: 1 − |distance| in low-resolution pixels, at least 0. A frame
+/// pixel of two or more samples, whose centroid is its centre, reaches the moving history
+/// pixels it covers with this weight where it does not land ([`landed_from`]).
+#[inline]
+pub fn splat_weight(x: u32, c: u32, full: u32, low: u32) -> f32 {
+    let k = full as f32 / low as f32;
+    let d = ((x as f32 + 0.5) - (c as f32 + 0.5) * k).abs() / k;
+    (1.0 - d).max(0.0)
+}
+
 /// The low-resolution column whose value lands in full-resolution column `x`, if any: the
 /// first of covering − 1, covering, covering + 1 whose [`landing`] is `x`.
 #[inline]

@@ -15,6 +15,7 @@ use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{
     APPROX_FLAG, HISTORY_CAP, ID_MASK, MIRROR_FLAG, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP,
     STILL_CAP, TemporalFrame, catmull_rom, covering, dot3, floor, landed_from, project4,
+    splat_weight,
 };
 use steadyray_scene::camera::CameraFrame;
 
@@ -87,12 +88,14 @@ impl Seen {
     }
 }
 
-/// For each history column (or row): the frame column covering its centre, and the frame
-/// column landing in it (`u32::MAX` for none).
+/// For each history column (or row): the frame column covering its centre, the frame
+/// column landing in it (`u32::MAX` for none), and the covering column's tent weight there
+/// (`splat_weight`).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Axis {
     covering: Vec<u32>,
     landed: Vec<u32>,
+    splat: Vec<f32>,
 }
 
 impl Axis {
@@ -104,6 +107,13 @@ impl Axis {
         self.landed.clear();
         self.landed
             .extend((0..full).map(|x| landed_from(x, anchor, full, low).unwrap_or(u32::MAX)));
+        self.splat.clear();
+        self.splat.extend(
+            self.covering
+                .iter()
+                .zip(0..full)
+                .map(|(&c, x)| splat_weight(x, c, full, low)),
+        );
     }
 }
 
@@ -313,7 +323,17 @@ impl Inputs<'_> {
             let sample = &self.prepared[*source as usize];
             let c = self.low[*source as usize];
             let current_ok = sample.finite;
-            let fresh = landed && current_ok;
+            let n = samples_for_pixel(sx, sy, frame.spp) as f32;
+            // The frame's weight here (`docs/temporal.md`, the splat rule).
+            let weight = if landed {
+                1.0
+            } else if !frame.still && n >= 2.0 {
+                self.columns.splat[x] * self.rows.splat[y as usize]
+            } else {
+                0.0
+            };
+            let fresh = weight > 0.0 && current_ok;
+            let m = n * weight;
             let history = if frame.still {
                 let h = self.history[(y * width) as usize + x];
                 Some(([h[0], h[1], h[2]], h[3]))
@@ -324,7 +344,6 @@ impl Inputs<'_> {
             };
             let approx = sample.tag & APPROX_FLAG != 0;
             let mirrored = sample.tag & MIRROR_FLAG != 0;
-            let n = samples_for_pixel(sx, sy, frame.spp) as f32;
             let cap = if frame.still {
                 STILL_CAP * n
             } else if (approx && (frame.eye_moved || frame.world_moved))
@@ -337,16 +356,16 @@ impl Inputs<'_> {
             *colour = match (history, fresh) {
                 (Some((h, age)), true) => {
                     let a = age.min(cap);
-                    let alpha = n / (a + n);
+                    let alpha = m / (a + m);
                     [
                         h[0] + (c[0] - h[0]) * alpha,
                         h[1] + (c[1] - h[1]) * alpha,
                         h[2] + (c[2] - h[2]) * alpha,
-                        a + n,
+                        a + m,
                     ]
                 }
                 (Some((h, age)), false) => [h[0], h[1], h[2], age.min(cap)],
-                (None, true) => [c[0], c[1], c[2], n],
+                (None, true) => [c[0], c[1], c[2], m],
                 (None, false) if current_ok => [c[0], c[1], c[2], 0.0],
                 (None, false) => [0.0; 4],
             };

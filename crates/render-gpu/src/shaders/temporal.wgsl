@@ -92,6 +92,13 @@ fn covering(x: u32, full: u32, low: u32) -> u32 {
     return min(u32(floor((f32(x) + 0.5) * f32(low) / f32(full))), low - 1u);
 }
 
+// The tent weight of low column c's centre at the centre of full column x (splat_weight).
+fn splat_weight(x: u32, c: u32, full: u32, low: u32) -> f32 {
+    let k = f32(full) / f32(low);
+    let d = abs((f32(x) + 0.5) - (f32(c) + 0.5) * k) / k;
+    return max(1.0 - d, 0.0);
+}
+
 // The first of covering - 1, covering, covering + 1 whose landing is x, or -1.
 fn landed_from(x: u32, anchor: f32, full: u32, low: u32) -> i32 {
     let c = covering(x, full, low);
@@ -309,7 +316,19 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
     let g = frame_record(source);
     let c = frame_image[source].xyz;
     let current_ok = finite3(c);
-    let fresh = landed && current_ok;
+    let n = f32(samples_for_pixel(sx, sy, params.spp));
+    // The frame's weight here: 1 where it landed; below scale 1 in a moving frame, a pixel
+    // of two or more samples (centroid at its centre) reaches the pixels it covers by
+    // the tent of its distance.
+    var weight = 0.0;
+    if landed {
+        weight = 1.0;
+    } else if params.still == 0u && n >= 2.0 {
+        weight = splat_weight(x, cx, params.width, params.low_width)
+            * splat_weight(y, cy, params.height, params.low_height);
+    }
+    let fresh = weight > 0.0 && current_ok;
+    let m = n * weight;
 
     let pixel = y * params.width + x;
     var kept = Kept(false, vec3<f32>(0.0), 0.0);
@@ -327,7 +346,6 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
     let mirrored = (g.tag & MIRROR_FLAG) != 0u;
     let eye_moved = params.eye_moved != 0u;
     let world_moved = params.world_moved != 0u;
-    let n = f32(samples_for_pixel(sx, sy, params.spp));
     var cap = HISTORY_CAP;
     if params.still != 0u {
         cap = STILL_CAP * n;
@@ -337,12 +355,12 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
     var out = vec4<f32>(0.0);
     if kept.valid && fresh {
         let a = min(kept.age, cap);
-        let alpha = n / (a + n);
-        out = vec4<f32>(kept.colour + (c - kept.colour) * alpha, a + n);
+        let alpha = m / (a + m);
+        out = vec4<f32>(kept.colour + (c - kept.colour) * alpha, a + m);
     } else if kept.valid {
         out = vec4<f32>(kept.colour, min(kept.age, cap));
     } else if fresh {
-        out = vec4<f32>(c, n);
+        out = vec4<f32>(c, m);
     } else if current_ok {
         out = vec4<f32>(c, 0.0);
     }
