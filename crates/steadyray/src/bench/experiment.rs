@@ -1,10 +1,11 @@
 //! Running controllers over the sweep, and finding the best fixed quality.
 
-use super::quality::{References, flip_stats, shown};
+use super::quality::{References, flip_stats};
 use super::record::{ControllerRun, FrameRow};
 use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
+use rayon::prelude::*;
 use steadyray_control::{Band, Bounds, Controller, FrameRecord, Quality, summarize};
 
 /// The sweep every run follows.
@@ -35,9 +36,11 @@ pub struct Capture<'a> {
 }
 
 /// Runs `controller` over the sweep: warm-up frames first (not counted), then every frame
-/// of the sweep, each rendered at the quality the controller asked for. Images are read
-/// back, compared and kept only after a frame's Tp was taken (the renderer's own timing),
-/// so `capture` never changes the timings.
+/// of the sweep, each rendered at the quality the controller asked for. Pictures are read
+/// back only after a frame's Tp was taken (the renderer's own timing), so `capture` never
+/// changes the timings, and compared with their references after the run, in parallel,
+/// so a GPU is not left idle between frames while a comparison runs (its clocks follow how
+/// busy it is).
 pub fn run_controller(
     source: &mut dyn FrameSource,
     controller: &mut dyn Controller,
@@ -57,6 +60,7 @@ pub fn run_controller(
     let mut rows = Vec::with_capacity(sweep.frames as usize);
     let mut records = Vec::with_capacity(sweep.frames as usize);
     let mut recorded = Vec::new();
+    let mut to_compare = Vec::new();
     let (width, height) = source.resolution();
     for k in 0..sweep.frames {
         let q = controller.quality();
@@ -70,27 +74,20 @@ pub fn run_controller(
             log::warn!("{name}: frame {k}: report refused: {e}");
         }
         let reference = capture.references.and_then(|r| r.get(k));
-        let mut flip = None;
         if reference.is_some() || capture.record {
-            let image = source
-                .last_image()?
+            let picture = source
+                .last_picture()?
                 .context("this source produces no images to measure or record")?;
             if let Some(reference) = reference {
-                let delivered = shown(&image, width, height)?;
-                flip = Some(steadyray_quality::flip(reference, &delivered)?.mean());
+                to_compare.push((rows.len(), reference, picture.clone()));
             }
             if capture.record {
-                recorded.push(steadyray_quality::Rgb8Image::from_rgba(
-                    image.width,
-                    image.height,
-                    &image.to_srgb8_rgba(),
-                )?);
+                recorded.push(picture);
             }
         }
         let t_s = source.path_duration_s() * f64::from(k) / f64::from(sweep.frames);
         rows.push(FrameRow {
             target_ms,
-            flip,
             ..FrameRow::measured(k, t_s, &m, sweep.band)
         });
         records.push(FrameRecord {
@@ -100,6 +97,16 @@ pub fn run_controller(
             rays,
         });
         progress.inc(1);
+    }
+    let flips = to_compare
+        .into_par_iter()
+        .map(|(row, reference, picture)| {
+            let delivered = picture.resize_bilinear(width, height);
+            Ok((row, steadyray_quality::flip(reference, &delivered)?.mean()))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    for (row, flip) in flips {
+        rows[row].flip = Some(flip);
     }
     let changes = source.load_changes(sweep.frames);
     let summary = summarize(

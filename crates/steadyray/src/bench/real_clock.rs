@@ -264,6 +264,9 @@ mod tests {
         fn last_image(&mut self) -> Result<Option<Image>> {
             self.inner.last_image()
         }
+        fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
+            self.inner.last_picture()
+        }
         fn set_temporal(&mut self, on: bool) -> Result<()> {
             self.inner.set_temporal(on)
         }

@@ -66,6 +66,9 @@ pub trait FrameSource {
     /// The linear image of the last frame (read back outside any timing), or `None` for a
     /// source without images (the simulated renderer).
     fn last_image(&mut self) -> Result<Option<Image>>;
+    /// The last frame's 8-bit picture at its rendered size, as the backend's display shows it
+    /// (`Renderer::read_picture`), or `None` for a source without images.
+    fn last_picture(&mut self) -> Result<Option<Rgb8Image>>;
     /// Turns the temporal mode on (a new history at the full-scale size: every frame is
     /// accumulated into it) or off.
     fn set_temporal(&mut self, on: bool) -> Result<()>;
@@ -151,6 +154,15 @@ impl FrameSource for RendererSource {
 
     fn last_image(&mut self) -> Result<Option<Image>> {
         Ok(Some(self.renderer.read_image()?))
+    }
+
+    fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
+        let picture = self.renderer.read_picture()?;
+        Ok(Some(Rgb8Image::from_rgba(
+            picture.width,
+            picture.height,
+            &picture.rgba,
+        )?))
     }
 
     fn set_temporal(&mut self, on: bool) -> Result<()> {
@@ -269,6 +281,10 @@ impl FrameSource for SimulatedSource {
     }
 
     fn last_image(&mut self) -> Result<Option<Image>> {
+        Ok(None)
+    }
+
+    fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
         Ok(None)
     }
 

@@ -238,6 +238,15 @@ impl FrameSource for StimulusSource<'_> {
     fn last_image(&mut self) -> Result<Option<Image>> {
         Ok(Some(self.renderer.read_image()?))
     }
+
+    fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
+        let picture = self.renderer.read_picture()?;
+        Ok(Some(Rgb8Image::from_rgba(
+            picture.width,
+            picture.height,
+            &picture.rgba,
+        )?))
+    }
 }
 
 /// The screen of a stimulus at ladder point `q`, each frame shown for exactly `refreshes`
