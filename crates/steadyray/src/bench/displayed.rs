@@ -119,11 +119,10 @@ impl TimedReferences {
             source
                 .frame(at, self.quality)
                 .with_context(|| format!("reference at {t_s:.4} s ({}) failed", self.quality))?;
-            let Some(image) = source.last_image()? else {
+            let Some(picture) = source.last_picture()? else {
                 bail!("references need a renderer that produces images (not --simulate)");
             };
-            let rgb = Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba())?;
-            self.insert(t_s, rgb.resize_bilinear(width, height));
+            self.insert(t_s, picture.resize_bilinear(width, height));
             progress();
         }
         Ok(())

@@ -40,10 +40,10 @@ impl References {
             source
                 .frame(PathPoint::Frame { k, n }, quality)
                 .with_context(|| format!("reference of frame {k} at {quality} failed"))?;
-            let Some(image) = source.last_image()? else {
+            let Some(picture) = source.last_picture()? else {
                 bail!("--quality needs a renderer that produces images (not --simulate)");
             };
-            images.insert(k, shown(&image, width, height)?);
+            images.insert(k, picture.resize_bilinear(width, height));
             progress();
         }
         Ok(Self { images })

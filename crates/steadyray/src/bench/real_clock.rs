@@ -228,7 +228,6 @@ mod tests {
     use crate::bench::source::{HandOver, Measured, SimulatedSource, simulated};
     use steadyray_control::{Quality, Setup, from_name};
     use steadyray_display::SyncMode;
-    use steadyray_render::Image;
 
     /// The simulated source, recording the path times it is asked for.
     struct Recording {
@@ -260,9 +259,6 @@ mod tests {
         }
         fn load_changes(&self, n: u32) -> Option<Vec<usize>> {
             self.inner.load_changes(n)
-        }
-        fn last_image(&mut self) -> Result<Option<Image>> {
-            self.inner.last_image()
         }
         fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
             self.inner.last_picture()

@@ -8,7 +8,7 @@ use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
 use steadyray_motion::{MotionTracker, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Image, Presented, RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{Picture, Presented, RenderSettings, Renderer, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
 /// One rendered (or simulated) frame as the experiment sees it.
@@ -63,11 +63,9 @@ pub trait FrameSource {
     fn takes_wall_time(&self) -> bool;
     /// Frames where the load changes suddenly by construction, when known.
     fn load_changes(&self, n: u32) -> Option<Vec<usize>>;
-    /// The linear image of the last frame (read back outside any timing), or `None` for a
-    /// source without images (the simulated renderer).
-    fn last_image(&mut self) -> Result<Option<Image>>;
     /// The last frame's 8-bit picture at its rendered size, as the backend's display shows it
-    /// (`Renderer::read_picture`), or `None` for a source without images.
+    /// ([`read_picture`], outside any timing), or `None` for a source without images (the
+    /// simulated renderer).
     fn last_picture(&mut self) -> Result<Option<Rgb8Image>>;
     /// Turns the temporal mode on (a new history at the full-scale size: every frame is
     /// accumulated into it) or off.
@@ -134,10 +132,9 @@ impl FrameSource for RendererSource {
         // The picture the bench keeps for its scores: the one presented when it reached the
         // host, else the device's picture read back now (outside the hand-over's time).
         let picture = match presented {
-            Presented::Host(picture) => picture,
-            Presented::Device => self.renderer.read_picture()?,
+            Presented::Host(picture) => rgb8(picture)?,
+            Presented::Device => read_picture(self.renderer.as_mut())?,
         };
-        let picture = Rgb8Image::from_rgba(picture.width, picture.height, &picture.rgba)?;
         Ok(HandOver {
             ms,
             image: Some(picture),
@@ -152,22 +149,28 @@ impl FrameSource for RendererSource {
         None
     }
 
-    fn last_image(&mut self) -> Result<Option<Image>> {
-        Ok(Some(self.renderer.read_image()?))
-    }
-
     fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
-        let picture = self.renderer.read_picture()?;
-        Ok(Some(Rgb8Image::from_rgba(
-            picture.width,
-            picture.height,
-            &picture.rgba,
-        )?))
+        Ok(Some(read_picture(self.renderer.as_mut())?))
     }
 
     fn set_temporal(&mut self, on: bool) -> Result<()> {
         set_history(self.renderer.as_mut(), (self.width, self.height), on)
     }
+}
+
+/// The last frame's picture as `renderer`'s display shows it (`Renderer::read_picture`), as
+/// the RGB image the scores and videos take.
+pub fn read_picture(renderer: &mut dyn Renderer) -> Result<Rgb8Image> {
+    rgb8(renderer.read_picture()?)
+}
+
+/// A renderer's picture as the RGB image the scores and videos take.
+fn rgb8(picture: Picture) -> Result<Rgb8Image> {
+    Ok(Rgb8Image::from_rgba(
+        picture.width,
+        picture.height,
+        &picture.rgba,
+    )?)
 }
 
 /// Renders `camera` at scene time `time_s` at quality `q` (the `full` size scaled by
@@ -278,10 +281,6 @@ impl FrameSource for SimulatedSource {
 
     fn load_changes(&self, n: u32) -> Option<Vec<usize>> {
         Some(self.renderer.model().profile.changes(n as usize))
-    }
-
-    fn last_image(&mut self) -> Result<Option<Image>> {
-        Ok(None)
     }
 
     fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {

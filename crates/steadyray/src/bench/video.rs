@@ -327,13 +327,10 @@ pub fn write_references(
             source
                 .frame(PathPoint::Time { index: 0, t_s }, references.quality())
                 .with_context(|| format!("reference of refresh {i} failed"))?;
-            let image = source
-                .last_image()?
+            let picture = source
+                .last_picture()?
                 .context("--video needs a renderer that produces images (not --simulate)")?;
-            pictures.push(
-                Rgb8Image::from_rgba(image.width, image.height, &image.to_srgb8_rgba())?
-                    .resize_bilinear(size.0, size.1),
-            );
+            pictures.push(picture.resize_bilinear(size.0, size.1));
         }
         let encoded = pictures
             .par_iter()

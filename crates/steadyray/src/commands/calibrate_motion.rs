@@ -19,7 +19,7 @@ use crate::bench::displayed::{TimedReferences, measure, screen_samples};
 use crate::bench::machine::git_revision;
 use crate::bench::real_clock::DisplayRun;
 use crate::bench::source::{
-    FrameSource, HandOver, Measured, PathPoint, render_measured, set_history,
+    FrameSource, HandOver, Measured, PathPoint, read_picture, render_measured, set_history,
 };
 use crate::bench::video::{self, ReferenceKey, VideoIndex, VideoRun};
 use anyhow::{Context, Result, bail};
@@ -35,7 +35,7 @@ use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, ViewingSetup};
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Image, Renderer};
+use steadyray_render::Renderer;
 use steadyray_scene::{Camera, Scene};
 
 /// What to measure.
@@ -212,14 +212,9 @@ impl FrameSource for StimulusSource<'_> {
     }
 
     fn hand_over(&mut self) -> Result<HandOver> {
-        let image = self.renderer.read_image()?;
         Ok(HandOver {
             ms: 0.0,
-            image: Some(Rgb8Image::from_rgba(
-                image.width,
-                image.height,
-                &image.to_srgb8_rgba(),
-            )?),
+            image: Some(read_picture(&mut *self.renderer)?),
         })
     }
 
@@ -235,17 +230,8 @@ impl FrameSource for StimulusSource<'_> {
         set_history(&mut *self.renderer, (self.width, self.height), on)
     }
 
-    fn last_image(&mut self) -> Result<Option<Image>> {
-        Ok(Some(self.renderer.read_image()?))
-    }
-
     fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
-        let picture = self.renderer.read_picture()?;
-        Ok(Some(Rgb8Image::from_rgba(
-            picture.width,
-            picture.height,
-            &picture.rgba,
-        )?))
+        Ok(Some(read_picture(&mut *self.renderer)?))
     }
 }
 
