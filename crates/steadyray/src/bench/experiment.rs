@@ -78,11 +78,13 @@ pub fn run_controller(
             let picture = source
                 .last_picture()?
                 .context("this source produces no images to measure or record")?;
-            if let Some(reference) = reference {
-                to_compare.push((rows.len(), reference, picture.clone()));
-            }
-            if capture.record {
-                recorded.push(picture);
+            match reference {
+                Some(reference) if capture.record => {
+                    to_compare.push((rows.len(), reference, picture.clone()));
+                    recorded.push(picture);
+                }
+                Some(reference) => to_compare.push((rows.len(), reference, picture)),
+                None => recorded.push(picture),
             }
         }
         let t_s = source.path_duration_s() * f64::from(k) / f64::from(sweep.frames);
