@@ -7,7 +7,9 @@ mod common;
 
 use common::*;
 use steadyray_quality::{Rgb8Image, flip};
-use steadyray_render::{Image, RenderError, Renderer, SettingsError, TemporalSettings};
+use steadyray_render::{
+    Image, RenderError, RenderSettings, Renderer, SettingsError, TemporalSettings,
+};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_scene::{Camera, Checker, Material, Motion, MotionKey, Scene, Shape, Vec3, builtin};
 
@@ -85,26 +87,42 @@ fn a_reduced_scale_lands_at_full_resolution() {
     );
 }
 
-/// The corridor's sweep at 0.5 s seen after 30 frames 1/60 s apart leading up to it (what
-/// `render --time 0.5 --temporal 30` shows): at every S the history must beat one frame at
-/// that S. Before ages counted samples and the jitter kept each frame's centroid, S = 4 and
+/// When the corridor's sweep is seen in [`sweep_history`].
+const SWEEP_END_S: f64 = 0.5;
+
+/// The corridor and its sweep's view at [`SWEEP_END_S`], with that view's reference at
+/// 160×90 (S = 256).
+fn sweep_end() -> (Scene, Scene, Image) {
+    let scene = builtin("corridor").unwrap();
+    let mut end_view = scene.clone();
+    end_view.camera = scene.camera_at_time(SWEEP_END_S);
+    let reference = render(&end_view, settings(160, 90, 256.0, 8));
+    (scene, end_view, reference)
+}
+
+/// The 160×90 history after 30 frames of `frame` 1/60 s apart along the corridor's sweep
+/// leading up to [`SWEEP_END_S`] (what `render --time 0.5 --temporal 30` shows).
+fn sweep_history(scene: &Scene, frame: &RenderSettings) -> Image {
+    let mut r = temporal(scene, 160, 90);
+    for k in 0..30 {
+        let t_s = SWEEP_END_S - f64::from(29 - k) / 60.0;
+        r.render(&scene.camera_at_time(t_s), 0.0, frame).unwrap();
+    }
+    r.read_image().unwrap()
+}
+
+/// The corridor's sweep at 0.5 s seen after 30 frames 1/60 s apart leading up to it: at
+/// every S the history must beat one frame at that S. Before ages counted samples and the jitter kept each frame's centroid, S = 4 and
 /// S = 16 lost here (FLIP 0.0176 and 0.0168 against 0.0157 and 0.0090 for one frame).
 #[test]
 fn a_moving_history_beats_the_frame_alone_at_every_s() {
-    let scene = builtin("corridor").unwrap();
-    let end_s = 0.5;
-    let mut end_view = scene.clone();
-    end_view.camera = scene.camera_at_time(end_s);
-    let reference = render(&end_view, settings(160, 90, 256.0, 8));
+    let (scene, end_view, reference) = sweep_end();
     for spp in [1.0, 4.0, 16.0] {
         let one = flip_against(&reference, &render(&end_view, settings(160, 90, spp, 8)));
-        let mut r = temporal(&scene, 160, 90);
-        for k in 0..30 {
-            let t_s = end_s - f64::from(29 - k) / 60.0;
-            r.render(&scene.camera_at_time(t_s), 0.0, &settings(160, 90, spp, 8))
-                .unwrap();
-        }
-        let history = flip_against(&reference, &r.read_image().unwrap());
+        let history = flip_against(
+            &reference,
+            &sweep_history(&scene, &settings(160, 90, spp, 8)),
+        );
         eprintln!("S = {spp}: one frame {one:.4}, history of 30 moving frames {history:.4}");
         assert!(
             history < 0.9 * one,
@@ -120,19 +138,12 @@ fn a_moving_history_beats_the_frame_alone_at_every_s() {
 /// (FLIP 0.0420 against 0.0382; now 0.0366, and S = 16 0.0353).
 #[test]
 fn below_scale_one_more_samples_make_a_better_moving_history() {
-    let scene = builtin("corridor").unwrap();
-    let end_s = 0.5;
-    let mut end_view = scene.clone();
-    end_view.camera = scene.camera_at_time(end_s);
-    let reference = render(&end_view, settings(160, 90, 256.0, 8));
+    let (scene, _, reference) = sweep_end();
     let history = |spp: f32| {
-        let mut r = temporal(&scene, 160, 90);
-        for k in 0..30 {
-            let t_s = end_s - f64::from(29 - k) / 60.0;
-            r.render(&scene.camera_at_time(t_s), 0.0, &settings(80, 45, spp, 8))
-                .unwrap();
-        }
-        flip_against(&reference, &r.read_image().unwrap())
+        flip_against(
+            &reference,
+            &sweep_history(&scene, &settings(80, 45, spp, 8)),
+        )
     };
     let (one, four, sixteen) = (history(1.0), history(4.0), history(16.0));
     eprintln!(
