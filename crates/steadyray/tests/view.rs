@@ -29,7 +29,7 @@ macro_rules! skip {
     }};
 }
 
-/// An Xvfb server on a free display, stopped when dropped.
+/// An Xvfb server on a display it chose itself, stopped when dropped.
 struct Xvfb {
     child: Child,
     display: String,
@@ -44,73 +44,64 @@ fn display_files(n: u32) -> [PathBuf; 2] {
     ]
 }
 
-/// Whether display `n` is held by a live X server: a lock file naming a running process. A
-/// lock left by a server that was killed is stale and is removed.
-fn display_taken(n: u32) -> bool {
-    let [lock, socket] = display_files(n);
-    let Ok(text) = std::fs::read_to_string(&lock) else {
-        return false;
-    };
-    let alive = text
-        .trim()
-        .parse::<u32>()
-        .is_ok_and(|pid| Path::new(&format!("/proc/{pid}")).exists());
-    if !alive {
-        let _ = std::fs::remove_file(lock);
-        let _ = std::fs::remove_file(socket);
-    }
-    alive
-}
-
 impl Xvfb {
-    /// Starts Xvfb on the first free display from :90 up; an error says why none started.
+    /// Starts Xvfb with `-displayfd`, so that the server itself takes a free display (atomically,
+    /// by binding its socket) and reports it once it accepts connections: tests running at once
+    /// never share, or kill, each other's server. An error says why none started.
     fn start() -> Result<Self, String> {
-        for n in 90..140 {
-            if display_taken(n) {
-                continue;
+        let mut child = Command::new("Xvfb")
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "1024x768x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .map_err(|e| format!("cannot run Xvfb ({e}); install the xvfb package"))?;
+        let stdout = child.stdout.take().expect("Xvfb's stdout is piped");
+        let (sender, receiver) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut line = String::new();
+            let _ = std::io::BufRead::read_line(&mut std::io::BufReader::new(stdout), &mut line);
+            let _ = sender.send(line);
+        });
+        let line = receiver.recv_timeout(Duration::from_secs(20));
+        match line.map(|l| l.trim().parse::<u32>()) {
+            Ok(Ok(number)) => Ok(Self {
+                child,
+                display: format!(":{number}"),
+                number,
+            }),
+            other => {
+                let _ = child.kill();
+                let _ = child.wait();
+                Err(format!("Xvfb reported no display within 20 s ({other:?})"))
             }
-            let child = Command::new("Xvfb")
-                .args([
-                    &format!(":{n}"),
-                    "-screen",
-                    "0",
-                    "1024x768x24",
-                    "-nolisten",
-                    "tcp",
-                ])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn();
-            let mut child = match child {
-                Ok(child) => child,
-                Err(e) => return Err(format!("cannot run Xvfb ({e}); install the xvfb package")),
-            };
-            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-            let deadline = Instant::now() + Duration::from_secs(10);
-            while Instant::now() < deadline {
-                if let Ok(Some(_)) = child.try_wait() {
-                    break; // display taken by a racing server: try the next
-                }
-                if socket.exists() {
-                    return Ok(Self {
-                        child,
-                        display: format!(":{n}"),
-                        number: n,
-                    });
-                }
-                std::thread::sleep(Duration::from_millis(50));
-            }
-            let _ = child.kill();
-            let _ = child.wait();
         }
-        Err("no Xvfb display could be started on :90 to :139".into())
     }
 }
 
 impl Drop for Xvfb {
-    /// Kills the server and removes the lock and socket it cannot remove once killed, so that
-    /// test runs do not use up the displays.
+    /// Stops the server with SIGTERM, so that it removes its own lock and socket. Only when it
+    /// does not stop is it killed and are its files removed here, so that test runs do not use
+    /// up the displays.
     fn drop(&mut self) {
+        let terminated = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status()
+            .is_ok_and(|s| s.success());
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while terminated && Instant::now() < deadline {
+            if let Ok(Some(_)) = self.child.try_wait() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
         for file in display_files(self.number) {
