@@ -26,12 +26,15 @@ struct LoadedScene {
     world: GpuWorld,
 }
 
-/// The image the last frame left: its size, and whether it is the temporal history.
+/// The image the last frame left: its size, whether it is the temporal history, and whether
+/// the RGBA8 buffer already holds its tone map (so that a presented frame read back as a
+/// picture is not tone-mapped twice).
 #[derive(Clone, Copy, Debug)]
 struct LastFrame {
     width: u32,
     height: u32,
     temporal: bool,
+    tone_mapped: bool,
 }
 
 /// The GPU backend. It owns its device (create one per process) and keeps pipelines and
@@ -112,7 +115,9 @@ impl GpuRenderer {
         let size = u64::from(last.width) * u64::from(last.height) * 4;
         let mut encoder = self.ctx.encoder("tonemap");
         self.encode_tonemap(&mut encoder, last);
-        self.read_back(encoder, Source::Srgb8, size)
+        let bytes = self.read_back(encoder, Source::Srgb8, size)?;
+        self.mark_tone_mapped();
+        Ok(bytes)
     }
 
     /// The bind group over the current buffers, rebuilt if one was replaced.
@@ -433,6 +438,7 @@ impl Renderer for GpuRenderer {
             width: frame_width,
             height: frame_height,
             temporal: step.is_some(),
+            tone_mapped: false,
         });
         Ok(FrameStats {
             render_ms,
@@ -451,6 +457,7 @@ impl Renderer for GpuRenderer {
             width,
             height,
             temporal,
+            ..
         } = self.last_frame.ok_or(RenderError::NoFrame)?;
         let size = u64::from(width) * u64::from(height) * 16;
         let encoder = self.ctx.encoder("read image");

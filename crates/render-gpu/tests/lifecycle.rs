@@ -39,4 +39,23 @@ fn needs_a_scene_then_a_frame() {
     let picture = gpu.read_picture().unwrap();
     assert_eq!((picture.width, picture.height), (16, 16));
     assert_eq!(picture.rgba, gpu.read_srgb8().unwrap());
+    // A presented frame is tone-mapped once; the next frame (the other scene) must be
+    // tone-mapped anew, whether it is presented first or read straight away.
+    gpu.render(&scene.camera, 0.0, &s).unwrap();
+    let next = gpu.read_picture().unwrap();
+    assert_ne!(next.rgba, picture.rgba, "the old frame's picture came back");
+    let host = gpu.read_image().unwrap().to_srgb8_rgba();
+    let off = next
+        .rgba
+        .iter()
+        .zip(&host)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max();
+    assert!(
+        off <= Some(1),
+        "device and host tone maps differ by {off:?}"
+    );
+    gpu.render(&scene.camera, 0.0, &s).unwrap();
+    assert_eq!(gpu.present().unwrap(), Presented::Device);
+    assert_eq!(gpu.read_picture().unwrap().rgba, next.rgba);
 }

@@ -21,6 +21,14 @@ pub struct DisplayImage<'a> {
 }
 
 impl GpuRenderer {
+    /// Notes that the RGBA8 buffer holds the last frame's tone map (its pass was submitted
+    /// without error): until the next frame, showing or reading it needs no pass.
+    pub(super) fn mark_tone_mapped(&mut self) {
+        if let Some(last) = &mut self.last_frame {
+            last.tone_mapped = true;
+        }
+    }
+
     /// Opens the renderer on `adapter`, e.g. the one [`crate::surface_adapter`] chose for a
     /// window, so that the window's present pass can share [`Self::device`].
     pub fn with_adapter(adapter: &wgpu::Adapter) -> Result<Self, RenderError> {
@@ -50,6 +58,7 @@ impl GpuRenderer {
             self.ctx.queue.submit([commands]);
         })?;
         self.ctx.errors.check()?;
+        self.mark_tone_mapped();
         Ok(DisplayImage {
             buffer: self.frame_buffers.srgb8.buffer(),
             width: last.width,
@@ -58,8 +67,11 @@ impl GpuRenderer {
     }
 
     /// Records the tone-map pass of the last frame (linear image, or the temporal history,
-    /// to packed RGBA8).
+    /// to packed RGBA8), unless the buffer already holds it.
     pub(super) fn encode_tonemap(&mut self, encoder: &mut wgpu::CommandEncoder, last: LastFrame) {
+        if last.tone_mapped {
+            return;
+        }
         if last.temporal {
             self.temporal.encode_tonemap(encoder);
             return;
