@@ -30,18 +30,20 @@ use std::time::Instant;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, MAX_DEPTH, Picture, Presented, RenderError, RenderSettings,
-    Renderer, SettingsError, TemporalSettings, TimingSource, check_time,
+    Renderer, SampleStream, SettingsError, TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 use temporal::History;
 use world::World;
 
 /// The CPU renderer: a prepared scene, its own rayon thread pool, the image of the last
-/// frame (reused across frames of the same size) and, in the temporal mode, the history.
+/// frame (reused across frames of the same size), the samples plain frames draw and, in the
+/// temporal mode, the history.
 pub struct CpuRenderer {
     pool: rayon::ThreadPool,
     world: Option<World>,
     image: Option<Image>,
+    stream: SampleStream,
     history: Option<History>,
 }
 
@@ -74,6 +76,7 @@ impl CpuRenderer {
             pool,
             world: None,
             image: None,
+            stream: SampleStream::Frames,
             history: None,
         }
     }
@@ -177,9 +180,13 @@ impl Renderer for CpuRenderer {
                     pixels: &mut image.pixels,
                     geometry: None,
                 };
-                self.pool.install(|| {
-                    render::render_frame(world, &frame, settings, SamplePattern::default(), outputs)
-                })
+                let (jitter, sample_base) = self.stream.pattern();
+                let pattern = SamplePattern {
+                    jitter,
+                    sample_base,
+                };
+                self.pool
+                    .install(|| render::render_frame(world, &frame, settings, pattern, outputs))
             }
             Some(history) => {
                 // Rays follow the history's aspect, so every sample lies where it lands.
@@ -254,5 +261,9 @@ impl Renderer for CpuRenderer {
         if let Some(history) = &mut self.history {
             history.clock.reset();
         }
+    }
+
+    fn set_sample_stream(&mut self, stream: SampleStream) {
+        self.stream = stream;
     }
 }

@@ -14,7 +14,7 @@ use steadyray_render::temporal::sample_base;
 use steadyray_render::two_level::SceneLayout;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, Picture, Presented, RayCounts, RenderError, RenderSettings,
-    Renderer, TemporalSettings, TimingSource, check_time,
+    Renderer, SampleStream, TemporalSettings, TimingSource, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 
@@ -56,6 +56,8 @@ pub struct GpuRenderer {
     bind_group: Option<wgpu::BindGroup>,
     scene: Option<LoadedScene>,
     temporal: TemporalPass,
+    /// The samples plain frames draw.
+    stream: SampleStream,
     last_frame: Option<LastFrame>,
 }
 
@@ -93,6 +95,7 @@ impl GpuRenderer {
             bind_group: None,
             scene: None,
             temporal,
+            stream: SampleStream::Frames,
             last_frame: None,
         })
     }
@@ -335,6 +338,7 @@ impl Renderer for GpuRenderer {
                     scene.world.surface_moves(step.previous_time_s, time_s, out);
                 });
         }
+        let (plain_jitter, plain_base) = self.stream.pattern();
         let frame = GpuFrame {
             eye: cam.eye.to_array(),
             half_width: cam.half_width,
@@ -354,8 +358,8 @@ impl Renderer for GpuRenderer {
             groups_x,
             counter_stride,
             group_count,
-            jitter: step.map_or([0.0; 2], |s| s.jitter),
-            sample_base: step.map_or(0, |s| sample_base(s.index)),
+            jitter: step.map_or(plain_jitter, |s| s.jitter),
+            sample_base: step.map_or(plain_base, |s| sample_base(s.index)),
             temporal: u32::from(step.is_some()),
             shape_count,
             ..Default::default()
@@ -511,6 +515,10 @@ impl Renderer for GpuRenderer {
 
     fn reset_history(&mut self) {
         self.temporal.reset();
+    }
+
+    fn set_sample_stream(&mut self, stream: SampleStream) {
+        self.stream = stream;
     }
 }
 

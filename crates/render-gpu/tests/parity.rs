@@ -6,7 +6,7 @@ mod common;
 
 use common::{assert_counts, compare, gpu};
 use std::f32::consts::PI;
-use steadyray_render::{RenderSettings, Renderer};
+use steadyray_render::{RenderSettings, Renderer, SampleStream};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_scene::Transform;
 use steadyray_scene::mesh_import::import_mesh;
@@ -84,6 +84,49 @@ fn corridor_facing_the_mirrors() {
         (96, 64),
         &SETTINGS,
     );
+}
+
+/// References draw the samples reserved for them (`SampleStream::Reference`) alike on both
+/// backends, and not the frames' (the image changes with the stream).
+#[test]
+fn references_draw_the_same_reserved_samples() {
+    let Some(mut gpu) = gpu() else {
+        return;
+    };
+    let scene = builtin("corridor").unwrap();
+    let camera = scene.camera_at_time(0.5);
+    let mut cpu = CpuRenderer::new();
+    gpu.load_scene(&scene).unwrap();
+    cpu.load_scene(&scene).unwrap();
+    let exact = gpu.adapter().is_software;
+    for (spp, max_depth) in [(16.0, 8), (2.5, 4)] {
+        let settings = RenderSettings {
+            width: 96,
+            height: 64,
+            spp,
+            max_depth,
+        };
+        let frames = {
+            gpu.render(&camera, 0.0, &settings).unwrap();
+            gpu.read_image().unwrap()
+        };
+        gpu.set_sample_stream(SampleStream::Reference);
+        cpu.set_sample_stream(SampleStream::Reference);
+        let g = gpu.render(&camera, 0.0, &settings).unwrap();
+        let c = cpu.render(&camera, 0.0, &settings).unwrap();
+        let what = format!("reference stream S={spp} R={max_depth}");
+        let reference = gpu.read_image().unwrap();
+        let diff = compare(&reference, &cpu.read_image().unwrap());
+        eprintln!("{what}: max {} mean {:.4}", diff.max, diff.mean);
+        diff.assert_parity(&what, exact);
+        assert_counts(&g.rays, &c.rays, exact, scene.lights.len(), &what);
+        assert!(
+            compare(&frames, &reference).pixels_over_2 > 100,
+            "{what}: the reference drew the frames' samples"
+        );
+        gpu.set_sample_stream(SampleStream::Frames);
+        cpu.set_sample_stream(SampleStream::Frames);
+    }
 }
 
 #[test]

@@ -7,6 +7,7 @@
 
 pub mod image;
 pub mod renderer;
+pub mod sample_stream;
 pub mod sampling;
 pub mod settings;
 pub mod stats;
@@ -19,6 +20,7 @@ pub mod two_level;
 
 pub use image::Image;
 pub use renderer::{BackendInfo, Picture, Presented, RenderError, Renderer, check_time};
+pub use sample_stream::SampleStream;
 pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError};
 pub use stats::{FrameStats, RayCounts, TimingSource};
 pub use temporal::TemporalSettings;

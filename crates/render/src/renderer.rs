@@ -1,5 +1,6 @@
 //! The interface every renderer backend implements.
 
+use crate::sample_stream::SampleStream;
 use crate::{FrameStats, Image, RenderSettings, SettingsError, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 use thiserror::Error;
@@ -98,4 +99,8 @@ pub trait Renderer {
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError>;
     /// Forgets the history (a camera cut): the next frame starts a new one.
     fn reset_history(&mut self);
+    /// Chooses the samples plain frames draw from now on ([`SampleStream`]): a reference is
+    /// rendered with [`SampleStream::Reference`], so that the frames it judges share none
+    /// of its samples. Temporal frames draw their own, whatever the stream.
+    fn set_sample_stream(&mut self, stream: SampleStream);
 }

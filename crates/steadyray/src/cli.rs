@@ -181,6 +181,12 @@ pub struct RenderArgs {
     /// (frame_0000.png, frame_0001.png, ...).
     #[arg(long, value_name = "DIR", requires = "temporal")]
     pub sequence: Option<PathBuf>,
+    /// Render a reference: draw the samples reserved for references (other sub-pixel
+    /// positions and random numbers than any frame's), so that a frame compared with this
+    /// image is not scored closer to it for sharing its samples. Use S of 2 or more: the
+    /// one sample of S = 1 is off the pixel centre.
+    #[arg(long, conflicts_with = "temporal")]
+    pub reference: bool,
 }
 
 /// How time runs (`spec/display.md`).

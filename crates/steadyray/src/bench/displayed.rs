@@ -4,7 +4,7 @@
 //! them), once per time, and shared by every controller.
 
 use super::real_clock::DisplayRun;
-use super::source::{FrameSource, PathPoint};
+use super::source::{FrameSource, PathPoint, render_reference};
 use anyhow::{Context, Result, bail};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -116,10 +116,9 @@ impl TimedReferences {
         missing.dedup_by_key(|t| time_key(*t));
         for t_s in missing {
             let at = PathPoint::Time { index: 0, t_s };
-            source
-                .frame(at, self.quality)
+            let picture = render_reference(source, at, self.quality)
                 .with_context(|| format!("reference at {t_s:.4} s ({}) failed", self.quality))?;
-            let Some(picture) = source.last_picture()? else {
+            let Some(picture) = picture else {
                 bail!("references need a renderer that produces images (not --simulate)");
             };
             self.insert(t_s, picture.resize_bilinear(width, height));

@@ -1,7 +1,7 @@
 //! Measuring the delivered quality (`bench --quality`): FLIP of delivered frames against a
 //! high-quality reference of the same view, rendered outside the timed loop.
 
-use super::source::{FrameSource, PathPoint};
+use super::source::{FrameSource, PathPoint, render_reference};
 use anyhow::{Context, Result, bail};
 use std::collections::BTreeMap;
 use steadyray_control::Quality;
@@ -37,10 +37,9 @@ impl References {
         let (width, height) = source.resolution();
         let mut images = BTreeMap::new();
         for k in (0..n).step_by(every as usize) {
-            source
-                .frame(PathPoint::Frame { k, n }, quality)
+            let picture = render_reference(source, PathPoint::Frame { k, n }, quality)
                 .with_context(|| format!("reference of frame {k} at {quality} failed"))?;
-            let Some(picture) = source.last_picture()? else {
+            let Some(picture) = picture else {
                 bail!("--quality needs a renderer that produces images (not --simulate)");
             };
             images.insert(k, picture.resize_bilinear(width, height));

@@ -228,6 +228,7 @@ mod tests {
     use crate::bench::source::{HandOver, Measured, SimulatedSource, simulated};
     use steadyray_control::{Quality, Setup, from_name};
     use steadyray_display::SyncMode;
+    use steadyray_render::SampleStream;
 
     /// The simulated source, recording the path times it is asked for.
     struct Recording {
@@ -265,6 +266,9 @@ mod tests {
         }
         fn set_temporal(&mut self, on: bool) -> Result<()> {
             self.inner.set_temporal(on)
+        }
+        fn set_sample_stream(&mut self, stream: SampleStream) {
+            self.inner.set_sample_stream(stream);
         }
     }
 

@@ -8,7 +8,9 @@ use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
 use steadyray_motion::{MotionTracker, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Picture, Presented, RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{
+    Picture, Presented, RenderSettings, Renderer, SampleStream, TemporalSettings,
+};
 use steadyray_scene::{Camera, Scene};
 
 /// One rendered (or simulated) frame as the experiment sees it.
@@ -70,6 +72,24 @@ pub trait FrameSource {
     /// Turns the temporal mode on (a new history at the full-scale size: every frame is
     /// accumulated into it) or off.
     fn set_temporal(&mut self, on: bool) -> Result<()>;
+    /// Chooses the samples plain frames draw (`Renderer::set_sample_stream`); a source
+    /// without samples (the simulated renderer) ignores it.
+    fn set_sample_stream(&mut self, stream: SampleStream);
+}
+
+/// Renders the reference of the world at `at` at quality `q` and returns its picture at its
+/// rendered size (`None` for a source without images). It draws the samples reserved for
+/// references ([`SampleStream::Reference`]), so that no frame it judges shares its noise;
+/// the source draws the frames' samples again afterwards.
+pub fn render_reference(
+    source: &mut dyn FrameSource,
+    at: PathPoint,
+    q: Quality,
+) -> Result<Option<Rgb8Image>> {
+    source.set_sample_stream(SampleStream::Reference);
+    let picture = source.frame(at, q).and_then(|_| source.last_picture());
+    source.set_sample_stream(SampleStream::Frames);
+    picture
 }
 
 /// The simulated renderer's hand-over cost, ms.
@@ -155,6 +175,10 @@ impl FrameSource for RendererSource {
 
     fn set_temporal(&mut self, on: bool) -> Result<()> {
         set_history(self.renderer.as_mut(), (self.width, self.height), on)
+    }
+
+    fn set_sample_stream(&mut self, stream: SampleStream) {
+        self.renderer.set_sample_stream(stream);
     }
 }
 
@@ -293,6 +317,8 @@ impl FrameSource for SimulatedSource {
         }
         Ok(())
     }
+
+    fn set_sample_stream(&mut self, _stream: SampleStream) {}
 }
 
 /// A simulated source for an `n`-frame corridor sweep.
@@ -300,5 +326,53 @@ pub fn simulated(n: u32) -> SimulatedSource {
     SimulatedSource {
         renderer: SimRenderer::new(RendererModel::corridor(n as usize)),
         frames: n,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use steadyray_display::ViewingSetup;
+    use steadyray_motion::MotionProbe;
+    use steadyray_render_cpu::CpuRenderer;
+    use steadyray_scene::builtin;
+
+    /// A CPU source of the corridor at 64x36.
+    fn corridor() -> RendererSource {
+        let scene = builtin("corridor").unwrap();
+        let mut renderer = CpuRenderer::with_threads(2);
+        renderer.load_scene(&scene).unwrap();
+        let probe = MotionProbe::new(&scene, (64, 36), ViewingSetup::standard_fhd()).unwrap();
+        RendererSource {
+            renderer: Box::new(renderer),
+            scene,
+            width: 64,
+            height: 36,
+            motion: MotionTracker::new(probe),
+        }
+    }
+
+    #[test]
+    fn a_reference_draws_its_own_samples_and_frames_theirs_again() {
+        let mut source = corridor();
+        let at = PathPoint::Time { index: 0, t_s: 0.5 };
+        let q = Quality::new(4.0, 8, 1.0);
+        let frame = |source: &mut RendererSource| {
+            source.frame(at, q).unwrap();
+            source.last_picture().unwrap().unwrap()
+        };
+        let before = frame(&mut source);
+        let reference = render_reference(&mut source, at, q).unwrap().unwrap();
+        // Compared with `==`: a failing assert_eq! would print every pixel.
+        assert!(
+            reference != before,
+            "the reference drew the frames' samples"
+        );
+        assert!(
+            frame(&mut source) == before,
+            "frames must draw their own samples again"
+        );
+        source.renderer.set_sample_stream(SampleStream::Reference);
+        assert!(frame(&mut source) == reference, "not the reserved samples");
     }
 }

@@ -20,7 +20,7 @@
 use super::displayed::{ScreenSample, TimedReferences, screen_picture, screen_samples};
 use super::real_clock::DisplayRun;
 use super::record::safe_name;
-use super::source::{FrameSource, PathPoint};
+use super::source::{FrameSource, PathPoint, render_reference};
 use anyhow::{Context, Result, bail};
 use image::ImageEncoder;
 use rayon::prelude::*;
@@ -324,11 +324,9 @@ pub fn write_references(
         let first = batch_index * ENCODE_BATCH;
         let mut pictures = Vec::with_capacity(batch.len());
         for (i, &t_s) in (first..).zip(batch) {
-            source
-                .frame(PathPoint::Time { index: 0, t_s }, references.quality())
-                .with_context(|| format!("reference of refresh {i} failed"))?;
-            let picture = source
-                .last_picture()?
+            let at = PathPoint::Time { index: 0, t_s };
+            let picture = render_reference(source, at, references.quality())
+                .with_context(|| format!("reference of refresh {i} failed"))?
                 .context("--video needs a renderer that produces images (not --simulate)")?;
             pictures.push(picture.resize_bilinear(size.0, size.1));
         }

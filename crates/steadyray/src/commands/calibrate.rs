@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
 use steadyray_control::{MotionModel, Quality};
 use steadyray_quality::{Rgb8Image, flip};
-use steadyray_render::{RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{RenderSettings, Renderer, SampleStream, TemporalSettings};
 use steadyray_scene::Scene;
 
 #[derive(Debug, Args)]
@@ -244,7 +244,11 @@ pub fn calibrate(
     let mut sums = vec![(0.0, 0.0, 0.0); settings.len() + 1];
     for &k in &views {
         progress.set_message(format!("view {k}: reference"));
-        let reference = measure(renderer, scene, plan, k, (r.spp, r.depth, r.scale), None)?;
+        // The reference draws its own samples, none of the settings' (`SampleStream`).
+        renderer.set_sample_stream(SampleStream::Reference);
+        let reference = measure(renderer, scene, plan, k, (r.spp, r.depth, r.scale), None);
+        renderer.set_sample_stream(SampleStream::Frames);
+        let reference = reference?;
         let top = &mut sums[settings.len()];
         top.0 += reference.rays;
         top.1 += reference.ms;

@@ -35,7 +35,7 @@ use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, ViewingSetup};
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::Renderer;
+use steadyray_render::{Renderer, SampleStream};
 use steadyray_scene::{Camera, Scene};
 
 /// What to measure.
@@ -232,6 +232,10 @@ impl FrameSource for StimulusSource<'_> {
 
     fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
         Ok(Some(read_picture(&mut *self.renderer)?))
+    }
+
+    fn set_sample_stream(&mut self, stream: SampleStream) {
+        self.renderer.set_sample_stream(stream);
     }
 }
 

@@ -5,7 +5,7 @@ use crate::cli::RenderArgs;
 use crate::image_out::{image_format, save_image};
 use anyhow::{Context, Result, bail};
 use serde_json::json;
-use steadyray_render::{RenderSettings, TemporalSettings};
+use steadyray_render::{RenderSettings, SampleStream, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
 /// Where the asked-for view comes from: a fixed camera, or the scene's path at a time.
@@ -98,6 +98,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     };
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
+    if args.reference {
+        renderer.set_sample_stream(SampleStream::Reference);
+    }
     if args.temporal.is_some() {
         renderer.set_temporal(Some(TemporalSettings {
             width: full.width,
