@@ -20,6 +20,32 @@ pub(crate) struct SamplePattern {
     pub sample_base: u32,
 }
 
+/// The sub-pixel positions of a frame's samples for the two sample counts its pixels take
+/// (floor(S) and one more, `samples_for_pixel`), computed once per frame: per sample they
+/// cost a tenth of an S = 8 frame.
+struct SamplePositions {
+    fewer: u32,
+    positions: [Vec<(f32, f32)>; 2],
+}
+
+impl SamplePositions {
+    /// The positions of every sample of a frame at `spp` (at least 1) and `jitter`.
+    fn new(spp: f32, jitter: [f32; 2]) -> Self {
+        let fewer = spp.floor() as u32;
+        let table = |n: u32| (0..n).map(|i| jittered_sample(i, n, jitter)).collect();
+        Self {
+            fewer,
+            positions: [table(fewer), table(fewer + 1)],
+        }
+    }
+
+    /// The positions of the samples of a pixel that takes `n` of them.
+    #[inline]
+    fn of(&self, n: u32) -> &[(f32, f32)] {
+        &self.positions[(n - self.fewer) as usize]
+    }
+}
+
 /// Ray counts of one tile: fixed size, so counting never allocates.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct TileCounts {
@@ -93,6 +119,7 @@ pub(crate) fn render_frame(
     outputs: FrameOutputs<'_>,
 ) -> TileCounts {
     let width = settings.width as usize;
+    let positions = SamplePositions::new(settings.spp, pattern.jitter);
     let render = |py: usize, row: &mut [[f32; 3]], geometry: Option<&mut [Geometry]>| {
         let mut counts = TileCounts::default();
         let row = Row {
@@ -100,7 +127,11 @@ pub(crate) fn render_frame(
             pixels: row,
             geometry,
         };
-        render_row(world, frame, settings, pattern, row, &mut counts);
+        let samples = Samples {
+            positions: &positions,
+            base: pattern.sample_base,
+        };
+        render_row(world, frame, settings, samples, row, &mut counts);
         counts
     };
     let rows = outputs.pixels.par_chunks_mut(width).enumerate();
@@ -113,6 +144,13 @@ pub(crate) fn render_frame(
             .map(|(py, row)| render(py, row, None))
             .reduce(TileCounts::default, TileCounts::merged),
     }
+}
+
+/// Where a row's samples go: their positions, and the index of sample 0's random numbers.
+#[derive(Clone, Copy)]
+struct Samples<'a> {
+    positions: &'a SamplePositions,
+    base: u32,
 }
 
 /// One row of a frame's outputs.
@@ -128,7 +166,7 @@ fn render_row(
     world: &World,
     frame: &CameraFrame,
     settings: &RenderSettings,
-    pattern: SamplePattern,
+    samples: Samples<'_>,
     mut row: Row<'_>,
     counts: &mut TileCounts,
 ) {
@@ -138,13 +176,12 @@ fn render_row(
     for (px, out) in (0u32..).zip(row.pixels.iter_mut()) {
         let n = samples_for_pixel(px, py, settings.spp);
         let mut sum = Vec3A::ZERO;
-        for sample in 0..n {
-            let (u, v) = jittered_sample(sample, n, pattern.jitter);
+        for (sample, &(u, v)) in (0u32..).zip(samples.positions.of(n)) {
             let dir = Vec3A::from(frame.ray_dir(px, py, u, v, width, height));
             let id = SampleId {
                 px,
                 py,
-                sample: sample + pattern.sample_base,
+                sample: sample + samples.base,
             };
             let ray = Ray::new(eye, dir);
             let depth = settings.max_depth;
