@@ -81,7 +81,7 @@ stage_pass() {
 }
 stage_still() {
     local still=(render "${size[@]}" --yaw 20 --depth 16)
-    "$bin" "${still[@]}" --spp "$still_ref_spp" --output "$work/still-reference.png" >/dev/null
+    "$bin" "${still[@]}" --spp "$still_ref_spp" --reference --output "$work/still-reference.png" >/dev/null
     for s in $still_spp; do
         "$bin" "${still[@]}" --spp "$s" --output "$work/still-one-$s.png" >/dev/null
         "$bin" "${still[@]}" --spp "$s" --temporal 31 --output "$work/still-history-$s.png" >/dev/null
