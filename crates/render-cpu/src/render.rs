@@ -21,8 +21,8 @@ pub(crate) struct SamplePattern {
 }
 
 /// The sub-pixel positions of a frame's samples for the two sample counts its pixels take
-/// (floor(S) and one more, `samples_for_pixel`), computed once per frame: per sample they
-/// cost a tenth of an S = 8 frame.
+/// (floor(S) and one more, `samples_for_pixel`), computed once per frame: computed per
+/// sample, they took a tenth of an S = 8 frame.
 struct SamplePositions {
     fewer: u32,
     positions: [Vec<(f32, f32)>; 2],
