@@ -30,6 +30,23 @@ pub enum SampleStream {
     Reference,
 }
 
+/// The fewest eye rays per pixel a reference may take: with one sample a pixel, its sample
+/// sits the reserved jitter J off the pixel centre, and the whole image with it.
+pub const MIN_REFERENCE_SPP: f32 = 2.0;
+
+/// Checks that a reference of `spp` eye rays per pixel keeps its centroid at every pixel
+/// centre (at least [`MIN_REFERENCE_SPP`]); the message says why not.
+pub fn check_reference_spp(spp: f32) -> Result<(), String> {
+    if spp >= MIN_REFERENCE_SPP {
+        Ok(())
+    } else {
+        Err(format!(
+            "a reference needs S >= {MIN_REFERENCE_SPP} (got {spp}): with one sample a pixel, \
+             the reference's sample sits off the pixel centre, and its image is shifted"
+        ))
+    }
+}
+
 impl SampleStream {
     /// The stream's jitter (as [`crate::temporal::jittered_sample`] takes it) and its first
     /// sample index (the random numbers' index of sample 0).
@@ -46,6 +63,15 @@ impl SampleStream {
 mod tests {
     use super::*;
     use crate::MAX_SPP;
+
+    #[test]
+    fn a_reference_takes_two_samples_or_more() {
+        assert!(check_reference_spp(2.0).is_ok() && check_reference_spp(256.0).is_ok());
+        for bad in [1.0, 1.5, 0.0, f32::NAN] {
+            let err = check_reference_spp(bad).unwrap_err();
+            assert!(err.contains("S >= 2"), "{err}");
+        }
+    }
 
     #[test]
     fn frames_draw_the_unjittered_samples_and_references_others() {

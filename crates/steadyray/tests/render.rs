@@ -1,6 +1,6 @@
 //! `steadyray render --time` on the moving built-in scene: the world (and, without --yaw,
 //! the camera) at that scene time, with its time and top-level update in `--stats`; bad
-//! times are clear errors.
+//! times, and a reference of one sample a pixel, are clear errors.
 
 use serde_json::Value;
 use std::path::PathBuf;
@@ -114,5 +114,19 @@ fn bad_times_are_clear_errors() {
         out_png.to_str().unwrap(),
     ]);
     assert!(!out.status.success(), "--time and --frame conflict");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_reference_of_one_sample_a_pixel_is_a_clear_error() {
+    let dir = scratch("reference");
+    let out_png = dir.join("x.png");
+    // The helper renders at S = 1.
+    let out = render(&["--reference", "-o", out_png.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("a reference needs S >= 2"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!out_png.exists(), "no image for a refused render");
     std::fs::remove_dir_all(&dir).unwrap();
 }

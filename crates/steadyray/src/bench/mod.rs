@@ -44,6 +44,7 @@ use steadyray_control::{
 use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{RealClock, ViewingSetup, aligned_band};
 use steadyray_motion::{MotionProbe, MotionTracker};
+use steadyray_render::sample_stream::check_reference_spp;
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -475,6 +476,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         ))
         .expect("the progress template is valid"),
     );
+    if let Some(spp) = args.reference_spp {
+        check_reference_spp(spp).map_err(anyhow::Error::msg)?;
+    }
     let reference_quality = Quality::new(
         args.reference_spp
             .unwrap_or(if real.is_some() { 16.0 } else { 256.0 }),

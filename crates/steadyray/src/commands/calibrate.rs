@@ -16,6 +16,7 @@ use std::path::PathBuf;
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
 use steadyray_control::{MotionModel, Quality};
 use steadyray_quality::{Rgb8Image, flip};
+use steadyray_render::sample_stream::check_reference_spp;
 use steadyray_render::{RenderSettings, Renderer, SampleStream, TemporalSettings};
 use steadyray_scene::Scene;
 
@@ -228,6 +229,7 @@ pub fn calibrate(
     if plan.views == 0 || plan.frames == 0 {
         bail!("--views and --frames must be at least 1");
     }
+    check_reference_spp(plan.reference.spp).map_err(anyhow::Error::msg)?;
     if let Some((frames, rate)) = plan.temporal
         && (frames == 0 || !(rate.is_finite() && rate > 0.0))
     {

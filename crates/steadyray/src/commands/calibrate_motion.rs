@@ -35,6 +35,7 @@ use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, ViewingSetup};
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
+use steadyray_render::sample_stream::check_reference_spp;
 use steadyray_render::{Renderer, SampleStream};
 use steadyray_scene::{Camera, Scene};
 
@@ -720,6 +721,7 @@ fn check_plan(plan: &MotionPlan) -> Result<()> {
     if plan.jod.is_some() && plan.video.is_none() {
         bail!("--jod scores the stimuli's videos: give --video DIR");
     }
+    check_reference_spp(plan.reference.spp).map_err(anyhow::Error::msg)?;
     plan.ladder.validate().map_err(anyhow::Error::msg)
 }
 

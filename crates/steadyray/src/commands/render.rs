@@ -5,6 +5,7 @@ use crate::cli::RenderArgs;
 use crate::image_out::{image_format, save_image};
 use anyhow::{Context, Result, bail};
 use serde_json::json;
+use steadyray_render::sample_stream::check_reference_spp;
 use steadyray_render::{RenderSettings, SampleStream, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
@@ -99,6 +100,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
     if args.reference {
+        check_reference_spp(args.spp).map_err(anyhow::Error::msg)?;
         renderer.set_sample_stream(SampleStream::Reference);
     }
     if args.temporal.is_some() {
