@@ -183,8 +183,8 @@ pub struct RenderArgs {
     pub sequence: Option<PathBuf>,
     /// Render a reference: draw the samples reserved for references (other sub-pixel
     /// positions and random numbers than any frame's), so that a frame compared with this
-    /// image is not scored closer to it for sharing its samples. Use S of 2 or more: the
-    /// one sample of S = 1 is off the pixel centre.
+    /// image is not scored closer to it for sharing its samples. It needs S of 2 or more
+    /// (one sample would sit off the pixel centre).
     #[arg(long, conflicts_with = "temporal")]
     pub reference: bool,
 }
