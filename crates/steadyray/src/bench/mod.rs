@@ -111,8 +111,9 @@ pub struct BenchArgs {
     /// frames held for several refreshes are seen at each of them).
     #[arg(long, default_value_t = 24, value_name = "K")]
     pub every: u32,
-    /// With --quality or --video: the reference's eye rays per pixel S, at full scale
-    /// (default 256; with --clock real, where a reference is rendered per refresh, 16).
+    /// With --quality or --video: the reference's eye rays per pixel S, at full scale, at
+    /// least 2 (default 256; with --clock real, where a reference is rendered per refresh,
+    /// 16). References draw samples no frame draws (docs/quality.md).
     #[arg(long)]
     pub reference_spp: Option<f32>,
     /// With --quality: the reference's reflection depth R.

@@ -52,7 +52,8 @@ pub struct CalibrateArgs {
     /// Resolution scales to try, comma separated.
     #[arg(long, value_delimiter = ',', default_value = "0.5,0.75,1")]
     pub scales: Vec<f32>,
-    /// The reference's eye rays per pixel S (full scale). The reference setting itself is
+    /// The reference's eye rays per pixel S (full scale, at least 2; it draws samples no
+    /// measured setting draws). The reference setting itself is
     /// also a point of the ladder (FLIP 0), so the ladder reaches the highest quality.
     /// Default 256; with --motion, where a reference is rendered per refresh, 16 (as the
     /// real clock's bench).
