@@ -20,22 +20,29 @@ pub(crate) struct SamplePattern {
     pub sample_base: u32,
 }
 
-/// The sub-pixel positions of a frame's samples for the two sample counts its pixels take
-/// (floor(S) and one more, `samples_for_pixel`), computed once per frame: computed per
-/// sample, they took a tenth of an S = 8 frame.
-struct SamplePositions {
+/// A frame's samples as its pixels draw them: their sub-pixel positions for the two sample
+/// counts the pixels take (floor(S) and one more, `samples_for_pixel`), computed once per
+/// frame (computed per sample, they took a tenth of an S = 8 frame), and the index of
+/// sample 0's random numbers.
+struct FrameSamples {
     fewer: u32,
     positions: [Vec<(f32, f32)>; 2],
+    base: u32,
 }
 
-impl SamplePositions {
-    /// The positions of every sample of a frame at `spp` (at least 1) and `jitter`.
-    fn new(spp: f32, jitter: [f32; 2]) -> Self {
+impl FrameSamples {
+    /// The samples of a frame at `spp` (at least 1) drawn by `pattern`.
+    fn new(spp: f32, pattern: SamplePattern) -> Self {
         let fewer = spp.floor() as u32;
-        let table = |n: u32| (0..n).map(|i| jittered_sample(i, n, jitter)).collect();
+        let table = |n: u32| {
+            (0..n)
+                .map(|i| jittered_sample(i, n, pattern.jitter))
+                .collect()
+        };
         Self {
             fewer,
             positions: [table(fewer), table(fewer + 1)],
+            base: pattern.sample_base,
         }
     }
 
@@ -119,7 +126,7 @@ pub(crate) fn render_frame(
     outputs: FrameOutputs<'_>,
 ) -> TileCounts {
     let width = settings.width as usize;
-    let positions = SamplePositions::new(settings.spp, pattern.jitter);
+    let samples = FrameSamples::new(settings.spp, pattern);
     let render = |py: usize, row: &mut [[f32; 3]], geometry: Option<&mut [Geometry]>| {
         let mut counts = TileCounts::default();
         let row = Row {
@@ -127,11 +134,7 @@ pub(crate) fn render_frame(
             pixels: row,
             geometry,
         };
-        let samples = Samples {
-            positions: &positions,
-            base: pattern.sample_base,
-        };
-        render_row(world, frame, settings, samples, row, &mut counts);
+        render_row(world, frame, settings, &samples, row, &mut counts);
         counts
     };
     let rows = outputs.pixels.par_chunks_mut(width).enumerate();
@@ -144,13 +147,6 @@ pub(crate) fn render_frame(
             .map(|(py, row)| render(py, row, None))
             .reduce(TileCounts::default, TileCounts::merged),
     }
-}
-
-/// Where a row's samples go: their positions, and the index of sample 0's random numbers.
-#[derive(Clone, Copy)]
-struct Samples<'a> {
-    positions: &'a SamplePositions,
-    base: u32,
 }
 
 /// One row of a frame's outputs.
@@ -166,7 +162,7 @@ fn render_row(
     world: &World,
     frame: &CameraFrame,
     settings: &RenderSettings,
-    samples: Samples<'_>,
+    samples: &FrameSamples,
     mut row: Row<'_>,
     counts: &mut TileCounts,
 ) {
@@ -176,7 +172,7 @@ fn render_row(
     for (px, out) in (0u32..).zip(row.pixels.iter_mut()) {
         let n = samples_for_pixel(px, py, settings.spp);
         let mut sum = Vec3A::ZERO;
-        for (sample, &(u, v)) in (0u32..).zip(samples.positions.of(n)) {
+        for (sample, &(u, v)) in (0u32..).zip(samples.of(n)) {
             let dir = Vec3A::from(frame.ray_dir(px, py, u, v, width, height));
             let id = SampleId {
                 px,
