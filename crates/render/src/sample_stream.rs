@@ -1,6 +1,7 @@
 //! Which samples a plain frame draws, so that a reference shares none with the frames it
 //! judges.
 
+use crate::SettingsError;
 use crate::temporal::{jitter, sample_base};
 
 /// The frame slot whose samples references draw ([`SampleStream::Reference`]): the last of
@@ -35,15 +36,12 @@ pub enum SampleStream {
 pub const MIN_REFERENCE_SPP: f32 = 2.0;
 
 /// Checks that a reference of `spp` eye rays per pixel keeps its centroid at every pixel
-/// centre (at least [`MIN_REFERENCE_SPP`]); the message says why not.
-pub fn check_reference_spp(spp: f32) -> Result<(), String> {
+/// centre (at least [`MIN_REFERENCE_SPP`]).
+pub fn check_reference_spp(spp: f32) -> Result<(), SettingsError> {
     if spp >= MIN_REFERENCE_SPP {
         Ok(())
     } else {
-        Err(format!(
-            "a reference needs S >= {MIN_REFERENCE_SPP} (got {spp}): with one sample a pixel, \
-             the reference's sample sits off the pixel centre, and its image is shifted"
-        ))
+        Err(SettingsError::BadReferenceSpp(spp))
     }
 }
 
@@ -68,7 +66,7 @@ mod tests {
     fn a_reference_takes_two_samples_or_more() {
         assert!(check_reference_spp(2.0).is_ok() && check_reference_spp(256.0).is_ok());
         for bad in [1.0, 1.5, 0.0, f32::NAN] {
-            let err = check_reference_spp(bad).unwrap_err();
+            let err = check_reference_spp(bad).unwrap_err().to_string();
             assert!(err.contains("S >= 2"), "{err}");
         }
     }

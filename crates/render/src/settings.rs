@@ -1,5 +1,6 @@
 //! The quality and size of one frame.
 
+use crate::sample_stream::MIN_REFERENCE_SPP;
 use thiserror::Error;
 
 /// The largest reflection/refraction depth R a renderer accepts.
@@ -28,6 +29,11 @@ pub enum SettingsError {
     BadSpp(f32),
     #[error("reflection depth R = {0} is out of range: at most {MAX_DEPTH}")]
     BadDepth(u32),
+    #[error(
+        "a reference needs S >= {MIN_REFERENCE_SPP} (got {0}): with one sample a pixel, the \
+         reference's sample sits off the pixel centre, and its image is shifted"
+    )]
+    BadReferenceSpp(f32),
     #[error(
         "a {width}x{height} frame cannot be accumulated into a {history_width}x{history_height} \
          history: temporal frames are at most the history's size"

@@ -338,6 +338,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }
+    if let Some(spp) = args.reference_spp {
+        check_reference_spp(spp)?;
+    }
     let real = real_options(args)?;
     if args.simulate && args.temporal != TemporalChoice::Off {
         bail!("--temporal needs a renderer (not --simulate)");
@@ -477,9 +480,6 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         ))
         .expect("the progress template is valid"),
     );
-    if let Some(spp) = args.reference_spp {
-        check_reference_spp(spp).map_err(anyhow::Error::msg)?;
-    }
     let reference_quality = Quality::new(
         args.reference_spp
             .unwrap_or(if real.is_some() { 16.0 } else { 256.0 }),

@@ -230,7 +230,7 @@ pub fn calibrate(
     if plan.views == 0 || plan.frames == 0 {
         bail!("--views and --frames must be at least 1");
     }
-    check_reference_spp(plan.reference.spp).map_err(anyhow::Error::msg)?;
+    check_reference_spp(plan.reference.spp)?;
     if let Some((frames, rate)) = plan.temporal
         && (frames == 0 || !(rate.is_finite() && rate > 0.0))
     {

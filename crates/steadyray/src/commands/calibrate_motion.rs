@@ -721,7 +721,7 @@ fn check_plan(plan: &MotionPlan) -> Result<()> {
     if plan.jod.is_some() && plan.video.is_none() {
         bail!("--jod scores the stimuli's videos: give --video DIR");
     }
-    check_reference_spp(plan.reference.spp).map_err(anyhow::Error::msg)?;
+    check_reference_spp(plan.reference.spp)?;
     plan.ladder.validate().map_err(anyhow::Error::msg)
 }
 

@@ -41,6 +41,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         max_depth: args.depth,
     };
     full.validate()?;
+    if args.reference {
+        check_reference_spp(args.spp)?;
+    }
     image_format(&args.output)?;
     if let Some(t) = args.time
         && !t.is_finite()
@@ -100,7 +103,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
     if args.reference {
-        check_reference_spp(args.spp).map_err(anyhow::Error::msg)?;
         renderer.set_sample_stream(SampleStream::Reference);
     }
     if args.temporal.is_some() {
