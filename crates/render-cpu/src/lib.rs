@@ -249,6 +249,24 @@ impl Renderer for CpuRenderer {
         })
     }
 
+    fn present_warped(&mut self, camera: &Camera) -> Result<Presented, RenderError> {
+        let history = self.history.as_ref().ok_or_else(|| {
+            RenderError::Unavailable(
+                "a warped refresh needs the temporal mode (its history and geometry)".into(),
+            )
+        })?;
+        let size = history.clock.settings();
+        let image = self
+            .pool
+            .install(|| history.warped(&camera.frame(size.width, size.height)))
+            .ok_or(RenderError::NoFrame)?;
+        Ok(Presented::Host(Picture {
+            width: image.width,
+            height: image.height,
+            rgba: image.to_srgb8_rgba(),
+        }))
+    }
+
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {
         if let Some(settings) = &temporal {
             settings.validate()?;

@@ -501,6 +501,12 @@ impl Renderer for GpuRenderer {
         })
     }
 
+    fn present_warped(&mut self, _camera: &Camera) -> Result<Presented, RenderError> {
+        Err(RenderError::Unavailable(
+            "the GPU backend does not warp refreshes yet (the CPU backend does)".into(),
+        ))
+    }
+
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {
         if let Some(settings) = &temporal {
             settings.validate()?;

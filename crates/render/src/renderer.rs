@@ -29,6 +29,8 @@ pub enum RenderError {
     Scene(String),
     #[error("GPU error: {0}")]
     Gpu(String),
+    #[error("not available: {0}")]
+    Unavailable(String),
 }
 
 /// A frame's 8-bit sRGB picture on the host: `width × height` RGBA pixels (alpha 255), row
@@ -91,6 +93,12 @@ pub trait Renderer {
     /// the host, so a caller that keeps every frame leaves the device idle for less time
     /// between frames.
     fn read_picture(&mut self) -> Result<Picture, RenderError>;
+    /// Hands the last frame to the display again as `camera` sees it, for a refresh that
+    /// has no new frame (`docs/temporal.md`, "Warped refreshes"): the temporal history
+    /// reprojected by its geometry records to the new view, then handed over as by
+    /// [`Renderer::present`]. The last frame's history is left as it was. Only in the
+    /// temporal mode, after a frame; objects are shown where the frame had them.
+    fn present_warped(&mut self, camera: &Camera) -> Result<Presented, RenderError>;
     /// Turns the temporal mode on, with a history of `temporal`'s size, or off (`None`); in
     /// either case any history starts over. In the temporal mode every frame is jittered,
     /// rendered at its own settings' size (at most the history's) and accumulated into the

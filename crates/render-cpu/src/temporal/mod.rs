@@ -3,6 +3,7 @@
 
 mod geometry;
 mod resolve;
+mod warp;
 
 pub(crate) use geometry::{Geometry, GeometrySink};
 
@@ -38,6 +39,8 @@ pub(crate) struct History {
     next_sources: Vec<u32>,
     /// Whether a frame was accumulated since the mode was set.
     accumulated: bool,
+    /// The camera frame of the last frame accumulated (for the history's size).
+    camera: Option<CameraFrame>,
 }
 
 impl History {
@@ -60,6 +63,7 @@ impl History {
             next_colour: vec![[0.0; 4]; pixels],
             next_sources: vec![0; pixels],
             accumulated: false,
+            camera: None,
         }
     }
 
@@ -124,6 +128,7 @@ impl History {
         std::mem::swap(&mut self.sources, &mut self.next_sources);
         std::mem::swap(&mut self.previous_geometry, &mut self.low_geometry);
         self.accumulated = true;
+        self.camera = Some(camera);
     }
 
     /// The accumulated image, if a frame was accumulated.

@@ -1,0 +1,113 @@
+//! Warped refreshes (`docs/temporal.md`): the history shown again from a camera that moved
+//! since its frame, for a refresh that has no new frame. Each history pixel's record says
+//! where its surface appears from the new camera; each screen pixel then looks for the
+//! history pixel that lands on it (a few fixed-point steps on that motion field) and takes
+//! the history's Catmull–Rom filter there, clamped to the four nearest pixels' range.
+
+use super::History;
+use glam::Vec4;
+use rayon::prelude::*;
+use steadyray_render::Image;
+use steadyray_render::temporal::{catmull_rom, floor, project4};
+use steadyray_scene::camera::CameraFrame;
+
+/// Fixed-point steps from a screen pixel to the history pixel that lands on it: the motion
+/// of a refresh is a few pixels and smooth within a surface, so two steps find it and a
+/// third settles the edges.
+const WARP_STEPS: usize = 3;
+
+/// A motion no step follows: the record's point is behind one of the cameras.
+const NO_MOTION: [f32; 2] = [f32::NAN; 2];
+
+impl History {
+    /// The accumulated image as camera frame `to` (made for the history's size) sees it,
+    /// or `None` before the first frame.
+    pub fn warped(&self, to: &CameraFrame) -> Option<Image> {
+        let from = self.camera.filter(|_| self.accumulated)?;
+        let settings = self.clock.settings();
+        let (width, height) = (settings.width as usize, settings.height as usize);
+        let size = (settings.width, settings.height);
+        let mut motion = vec![NO_MOTION; width * height];
+        motion
+            .par_chunks_mut(width)
+            .zip(self.sources.par_chunks(width))
+            .for_each(|(row, sources)| {
+                for (motion, sources) in row.chunks_mut(4).zip(sources.chunks(4)) {
+                    let mut q = [[0.0f32; 4]; 4];
+                    for (lane, &source) in sources.iter().enumerate() {
+                        let g = &self.previous_geometry[source as usize];
+                        for (component, &v) in q.iter_mut().zip(&g.q) {
+                            component[lane] = v;
+                        }
+                    }
+                    let q = q.map(Vec4::from_array);
+                    let (ax, ay, a_ok) = project4(&from, q, size);
+                    let (bx, by, b_ok) = project4(to, q, size);
+                    let (dx, dy) = (bx - ax, by - ay);
+                    for (lane, m) in motion.iter_mut().enumerate() {
+                        if a_ok.test(lane) && b_ok.test(lane) {
+                            *m = [dx[lane], dy[lane]];
+                        }
+                    }
+                }
+            });
+        let mut pixels = vec![[0.0f32; 3]; width * height];
+        pixels
+            .par_chunks_mut(width)
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, pixel) in row.iter_mut().enumerate() {
+                    let target = [x as f32 + 0.5, y as f32 + 0.5];
+                    let mut at = target;
+                    for _ in 0..WARP_STEPS {
+                        let px = (floor(at[0]).max(0.0) as usize).min(width - 1);
+                        let py = (floor(at[1]).max(0.0) as usize).min(height - 1);
+                        let m = motion[py * width + px];
+                        if m[0].is_nan() {
+                            break;
+                        }
+                        at = [target[0] - m[0], target[1] - m[1]];
+                    }
+                    *pixel = self.filtered_at(at, (width, height));
+                }
+            });
+        Some(Image {
+            width: settings.width,
+            height: settings.height,
+            pixels,
+        })
+    }
+
+    /// The history's Catmull–Rom filter at `at` (pixel centres at i + 0.5, taps past the
+    /// edges clamped to them), clamped to the range of the four pixels around `at` so that
+    /// it does not ring at edges.
+    fn filtered_at(&self, at: [f32; 2], (width, height): (usize, usize)) -> [f32; 3] {
+        let (u, v) = (at[0] - 0.5, at[1] - 0.5);
+        let (fu, fv) = (floor(u), floor(v));
+        let (wx, wy) = (catmull_rom(u - fu), catmull_rom(v - fv));
+        let tap = |i: f32, offset: i64, last: usize| -> usize {
+            (i as i64 + offset).clamp(0, last as i64) as usize
+        };
+        let columns: [usize; 4] = std::array::from_fn(|k| tap(fu, k as i64 - 1, width - 1));
+        let rows: [usize; 4] = std::array::from_fn(|k| tap(fv, k as i64 - 1, height - 1));
+        let at_tap = |c: usize, r: usize| Vec4::from_array(self.colour[r * width + c]);
+        let mut sum = Vec4::ZERO;
+        for (&r, &wb) in rows.iter().zip(&wy) {
+            let mut line = Vec4::ZERO;
+            for (&c, &wa) in columns.iter().zip(&wx) {
+                line += wa * at_tap(c, r);
+            }
+            sum += wb * line;
+        }
+        let near = [
+            at_tap(columns[1], rows[1]),
+            at_tap(columns[2], rows[1]),
+            at_tap(columns[1], rows[2]),
+            at_tap(columns[2], rows[2]),
+        ];
+        let lo = near[0].min(near[1]).min(near[2]).min(near[3]);
+        let hi = near[0].max(near[1]).max(near[2]).max(near[3]);
+        let c = sum.max(lo).min(hi);
+        [c.x, c.y, c.z]
+    }
+}
