@@ -38,13 +38,14 @@ use world::World;
 
 /// The CPU renderer: a prepared scene, its own rayon thread pool, the image of the last
 /// frame (reused across frames of the same size), the samples plain frames draw and, in the
-/// temporal mode, the history.
+/// temporal mode, the history and the warped picture on display, if any.
 pub struct CpuRenderer {
     pool: rayon::ThreadPool,
     world: Option<World>,
     image: Option<Image>,
     stream: SampleStream,
     history: Option<History>,
+    warped: Option<Picture>,
 }
 
 impl Default for CpuRenderer {
@@ -78,6 +79,7 @@ impl CpuRenderer {
             image: None,
             stream: SampleStream::Frames,
             history: None,
+            warped: None,
         }
     }
 
@@ -166,6 +168,7 @@ impl Renderer for CpuRenderer {
         if let Some(history) = &self.history {
             history.clock.settings().check(settings)?;
         }
+        self.warped = None;
         let start = Instant::now();
         let accel_ms = self.pool.install(|| world.set_time(time_s))?;
         let world = &*world;
@@ -237,10 +240,14 @@ impl Renderer for CpuRenderer {
     }
 
     fn present(&mut self) -> Result<Presented, RenderError> {
+        self.warped = None;
         Ok(Presented::Host(self.read_picture()?))
     }
 
     fn read_picture(&mut self) -> Result<Picture, RenderError> {
+        if let Some(warped) = &self.warped {
+            return Ok(warped.clone());
+        }
         let image = self.read_image()?;
         Ok(Picture {
             width: image.width,
@@ -260,11 +267,13 @@ impl Renderer for CpuRenderer {
             .pool
             .install(|| history.warped(&camera.frame(size.width, size.height)))
             .ok_or(RenderError::NoFrame)?;
-        Ok(Presented::Host(Picture {
+        let picture = Picture {
             width: image.width,
             height: image.height,
             rgba: image.to_srgb8_rgba(),
-        }))
+        };
+        self.warped = Some(picture.clone());
+        Ok(Presented::Host(picture))
     }
 
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {
@@ -272,6 +281,7 @@ impl Renderer for CpuRenderer {
             settings.validate()?;
         }
         self.history = temporal.map(History::new);
+        self.warped = None;
         Ok(())
     }
 

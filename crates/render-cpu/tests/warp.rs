@@ -1,9 +1,9 @@
 //! Warped refreshes (`docs/temporal.md`): the history shown again from the camera of a later
 //! refresh that has no new frame. Shown from its own camera it is the frame itself; shown
-//! from a camera one or two refreshes on along the corridor's sweep it is nearly as close to
-//! the world seen from there as the frame is to its own view (the frame shown again is
-//! not); it leaves the history as it
-//! was; and it needs the temporal mode and a frame.
+//! from a camera one to four refreshes on along the corridor's sweep it is nearly as close
+//! to the world seen from there as the frame is to its own view (the frame shown again is
+//! not); it leaves the history as it was and is what the display shows until the frame is
+//! presented again; and it needs the temporal mode and a frame.
 
 mod common;
 
@@ -91,6 +91,21 @@ fn a_warp_shows_the_view_of_a_later_refresh() {
         r.read_image().unwrap(),
         before,
         "a warp changed the history"
+    );
+    let t_s = end_s + 1.0 / 60.0;
+    let warped = picture_of(r.present_warped(&scene.camera_at_time(t_s)).unwrap());
+    let read = |r: &mut CpuRenderer| {
+        let p = r.read_picture().unwrap();
+        Rgb8Image::from_rgba(p.width, p.height, &p.rgba).unwrap()
+    };
+    assert!(
+        read(&mut r) == warped,
+        "the display shows the warped picture"
+    );
+    assert!(picture_of(r.present().unwrap()) == shown);
+    assert!(
+        read(&mut r) == shown,
+        "presented again, the display shows the frame"
     );
 }
 

@@ -87,11 +87,12 @@ pub trait Renderer {
     /// to the 8-bit picture a window uploads; a GPU backend tone-maps it on the device into
     /// the buffer its present pass reads, with no readback.
     fn present(&mut self) -> Result<Presented, RenderError>;
-    /// The last frame's picture as this backend's display shows it, read to the host (for
+    /// The picture this backend's display shows, read to the host (for
     /// scores and videos, outside any timing): a GPU backend tone-maps on the device and
     /// reads back the 8-bit picture, a quarter of the linear image's bytes and no tone map on
     /// the host, so a caller that keeps every frame leaves the device idle for less time
-    /// between frames.
+    /// between frames. That is the last frame's picture, or after [`Renderer::present_warped`]
+    /// the warped one, until the next frame or [`Renderer::present`].
     fn read_picture(&mut self) -> Result<Picture, RenderError>;
     /// Hands the last frame to the display again as `camera` sees it, for a refresh that
     /// has no new frame (`docs/temporal.md`, "Warped refreshes"): the temporal history
