@@ -1,6 +1,7 @@
 //! The temporal mode on the command line: `render --temporal` writes the accumulated
 //! history at full size (also at a reduced scale) and every frame with `--sequence`; `bench
-//! --temporal both` runs every controller without and with it; bad values are clear errors.
+//! --temporal both` runs every controller without and with it; `--warp` warps the temporal
+//! runs' refreshes without a new frame; bad values are clear errors.
 
 use serde_json::Value;
 use std::path::PathBuf;
@@ -169,4 +170,101 @@ fn bench_runs_every_controller_without_and_with_history() {
     for c in summary["controllers"].as_array().unwrap() {
         assert!(c["flip_mean"].as_f64().unwrap() > 0.0, "{c}");
     }
+}
+
+/// `--warp` under the real clock: the temporal run shows warps at its refreshes without a
+/// new frame (at least refresh 0, which shows the warm-up frame), and says so in
+/// `summary.json` and the video's `timings.csv`; the plain run does not warp.
+#[test]
+fn bench_warps_the_temporal_runs_refreshes() {
+    let dir = scratch("warp");
+    let video = dir.join("video");
+    let output = run(&[
+        "bench",
+        "--backend",
+        "cpu",
+        "--width",
+        "48",
+        "--height",
+        "27",
+        "--clock",
+        "real",
+        "--duration",
+        "0.2",
+        "--warmup",
+        "2",
+        "--controllers",
+        "predictive",
+        "--temporal",
+        "both",
+        "--warp",
+        "--quality",
+        "--every",
+        "1",
+        "--reference-spp",
+        "4",
+        "--video",
+        video.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["warp"], true);
+    let controllers = summary["controllers"].as_array().unwrap();
+    let names: Vec<&str> = controllers
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["predictive", "predictive +temporal +warp"]);
+    assert!(
+        controllers[0].get("warps_shown").is_none(),
+        "{}",
+        controllers[0]
+    );
+    let warped = &controllers[1];
+    assert!(warped["warps_shown"].as_u64().unwrap() >= 1, "{warped}");
+    assert!(warped["warp_ms_mean"].as_f64().unwrap() > 0.0, "{warped}");
+    assert!(
+        warped["displayed_flip_mean"].as_f64().unwrap() > 0.0,
+        "{warped}"
+    );
+    let timings =
+        std::fs::read_to_string(video.join("predictive__temporal__warp/timings.csv")).unwrap();
+    let mut lines = timings.lines();
+    assert!(lines.next().unwrap().ends_with(",warped"));
+    let first = lines.next().unwrap();
+    assert!(
+        first.starts_with("0,0.0000,warmup") && first.ends_with(",1"),
+        "refresh 0 shows the warm-up frame warped: {first}"
+    );
+}
+
+#[test]
+fn bad_warp_options_are_errors() {
+    let dir = scratch("bad-warp");
+    let out = dir.to_str().unwrap();
+    for (args, message) in [
+        (vec!["--warp"], "need --clock real"),
+        (
+            vec!["--clock", "real", "--warp"],
+            "needs --temporal on or both",
+        ),
+        (
+            vec!["--clock", "real", "--temporal", "--warp", "--vsync", "off"],
+            "vsync on",
+        ),
+    ] {
+        let mut all = vec!["bench", "--backend", "cpu", "--out", out];
+        all.extend(args);
+        let output = run(&all);
+        assert!(!output.status.success(), "{all:?}");
+        assert!(
+            stderr(&output).contains(message),
+            "{all:?}: {}",
+            stderr(&output)
+        );
+    }
+    assert!(!dir.join("summary.json").exists(), "nothing written");
 }

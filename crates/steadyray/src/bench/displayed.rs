@@ -136,7 +136,11 @@ pub struct ScreenSample {
     pub time_s: f64,
     /// The frame on screen; `None`: the last warm-up frame.
     pub frame: Option<usize>,
-    /// The world time that frame shows, s.
+    /// Whether the refresh showed that frame warped to its own time (`--warp`).
+    pub warped: bool,
+    /// The world time the screen shows, s: its frame's, or the refresh's own for a warp (what
+    /// a warp gets wrong, objects that moved since the frame and what it uncovers, is its
+    /// picture's error, not its age).
     pub world_s: f64,
 }
 
@@ -151,22 +155,41 @@ pub fn screen_samples(
         .iter()
         .enumerate()
         .filter(|(i, _)| wants(*i))
-        .map(|(index, r)| ScreenSample {
-            index,
-            time_s: r.time_ms / 1000.0,
-            frame: r.frame,
-            world_s: run.world_of(r.frame),
+        .map(|(index, r)| {
+            let warped = run.warps.shown.contains(&index);
+            let time_s = r.time_ms / 1000.0;
+            ScreenSample {
+                index,
+                time_s,
+                frame: r.frame,
+                warped,
+                world_s: if warped {
+                    time_s
+                } else {
+                    run.world_of(r.frame)
+                },
+            }
         })
         .collect()
 }
 
-/// The picture a sample shows at the full-scale size: the kept frame upscaled, or black when
-/// nothing was on screen yet (no warm-up frame).
+/// The picture a sample shows at the full-scale size: its warp, or the kept frame upscaled,
+/// or black when nothing was on screen yet (no warm-up frame).
 pub fn screen_picture(
     run: &DisplayRun,
-    frame: Option<usize>,
+    sample: &ScreenSample,
     (width, height): (u32, u32),
 ) -> Result<Rgb8Image> {
+    if sample.warped {
+        let picture = run.warps.pictures.get(&sample.index).with_context(|| {
+            format!(
+                "the warped picture of refresh {} was not kept",
+                sample.index
+            )
+        })?;
+        return Ok(picture.resize_bilinear(width, height));
+    }
+    let frame = sample.frame;
     match run.pictures.get(&frame) {
         Some(picture) => Ok(picture.resize_bilinear(width, height)),
         None if frame.is_none() => Ok(Rgb8Image::from_fn(width, height, |_, _| [0; 3])),
@@ -210,7 +233,7 @@ pub fn measure(
     let rows = samples
         .par_iter()
         .map(|s| -> Result<[f64; 4]> {
-            let screen = screen_picture(run, s.frame, size)?;
+            let screen = screen_picture(run, s, size)?;
             let at = |t_s| -> Result<f64> {
                 Ok(
                     steadyray_quality::flip_at(references.at(t_s)?, &screen, pixels_per_degree)?
@@ -240,6 +263,7 @@ pub fn measure(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bench::real_clock::Warps;
     use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
 
     const P_S: f64 = 1.0 / 60.0;
@@ -283,6 +307,7 @@ mod tests {
             figures: DisplayFigures::of(&timeline),
             timeline,
             pictures,
+            warps: Warps::default(),
             world_s,
             quality: None,
             busy_pct: None,
@@ -329,6 +354,38 @@ mod tests {
         let q = displayed(2.0, 0.0);
         assert_eq!((q.flip_mean, q.age_flip_mean), (0.0, 0.0));
         assert!(q.age_ms_mean > 0.0);
+    }
+
+    /// Frames one refresh old, every refresh after the first replaced by a warp that shows
+    /// the world at its own time: the screen is then the world, on time.
+    #[test]
+    fn a_warped_refresh_is_its_own_picture_at_its_own_time() {
+        let speed = 240.0;
+        let (mut run, mut references) = screen(1.0, speed);
+        run.warps.shown.extend(1..12);
+        let samples = screen_samples(&run, 1000.0 * P_S, |_| true);
+        for s in &samples[1..] {
+            let truth = references.get(s.time_s).unwrap().clone();
+            run.warps.pictures.insert(s.index, truth);
+        }
+        assert!(
+            samples[1..]
+                .iter()
+                .all(|s| s.warped && s.world_s == s.time_s)
+        );
+        let q = measure(&run, &samples, &mut references, (64, 32), 12.6)
+            .unwrap()
+            .unwrap();
+        assert_eq!(
+            (q.flip_mean, q.age_flip_mean, q.age_ms_mean),
+            (0.0, 0.0, 0.0)
+        );
+        run.warps.pictures.remove(&5);
+        let err = measure(&run, &samples, &mut references, (64, 32), 12.6).unwrap_err();
+        assert!(
+            err.to_string().contains("warped picture of refresh 5"),
+            "{err}"
+        );
     }
 
     #[test]

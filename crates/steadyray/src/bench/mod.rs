@@ -42,7 +42,7 @@ use steadyray_control::{
     Band, CONTROLLER_NAMES, Controller, Quality, Setup, from_name, parse_options,
 };
 use steadyray_display::model::refresh_at_or_after;
-use steadyray_display::{RealClock, ViewingSetup, aligned_band};
+use steadyray_display::{RealClock, SyncMode, ViewingSetup, aligned_band};
 use steadyray_motion::{MotionProbe, MotionTracker};
 use steadyray_render::sample_stream::check_reference_spp;
 
@@ -146,6 +146,12 @@ pub struct BenchArgs {
         default_missing_value = "on"
     )]
     pub temporal: TemporalChoice,
+    /// With --clock real, vsync on and the temporal mode: a refresh that has no new frame
+    /// shows the frame on screen warped to the refresh's camera from its history
+    /// (docs/temporal.md, "Warped refreshes"), made while the next frame renders and counted
+    /// in that frame's Tp. The temporal runs are labelled "+temporal +warp".
+    #[arg(long)]
+    pub warp: bool,
     /// With --clock real: write the screen of every run and the reference at every refresh
     /// into DIR (lossless PNG sequences, timings.csv, a video each, video.json) for the JOD
     /// tool (scripts/jod/). References already in DIR/reference for the same set-up are
@@ -210,8 +216,14 @@ struct RealOptions {
 fn real_options(args: &BenchArgs) -> Result<Option<RealOptions>> {
     match args.clock {
         ClockChoice::Frames => {
-            if args.duration.is_some() || args.display.is_given() || args.video.is_some() {
-                bail!("--duration, --refresh, --vsync, --vrr and --video need --clock real");
+            if args.duration.is_some()
+                || args.display.is_given()
+                || args.video.is_some()
+                || args.warp
+            {
+                bail!(
+                    "--duration, --refresh, --vsync, --vrr, --video and --warp need --clock real"
+                );
             }
             Ok(None)
         }
@@ -224,9 +236,16 @@ fn real_options(args: &BenchArgs) -> Result<Option<RealOptions>> {
                     "--quality and --video need a renderer that produces images (not --simulate)"
                 );
             }
-            Ok(Some(RealOptions {
-                display: args.display.config()?,
-            }))
+            let display = args.display.config()?;
+            if args.warp {
+                if args.temporal == TemporalChoice::Off {
+                    bail!("--warp shows a temporal history again: it needs --temporal on or both");
+                }
+                if display.sync != SyncMode::Vsync {
+                    bail!("--warp fills the refreshes of a display with vsync on (--vsync on)");
+                }
+            }
+            Ok(Some(RealOptions { display }))
         }
     }
 }
@@ -439,6 +458,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 warmup: args.warmup,
                 band,
                 bounds,
+                warp: false,
             })
         }
         None => None,
@@ -546,6 +566,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                     .map(|s| s.frame)
                     .collect();
             shown.pictures.retain(|frame, _| needed.contains(frame));
+            shown
+                .warps
+                .pictures
+                .retain(|&refresh, _| measured.wants(refresh));
         }
         Ok(run)
     };
@@ -553,13 +577,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         references: references.as_ref(),
         record: args.record.is_some(),
     };
+    // A temporal run under the real clock warps its refreshes without a new frame with --warp.
     let run_one = |source: &mut dyn FrameSource,
                    controller: &mut dyn Controller,
-                   label: &str|
+                   label: &str,
+                   temporal: bool|
      -> Result<ControllerRun> {
         match &real {
             None => run_controller(source, controller, label, &sweep, capture, &progress),
-            Some(r) => run_controller_real(source, controller, label, r, keep_pictures, &progress),
+            Some(r) => {
+                let r = RealSweep {
+                    warp: args.warp && temporal,
+                    ..*r
+                };
+                run_controller_real(source, controller, label, &r, keep_pictures, &progress)
+            }
         }
     };
     let mut runs: Vec<ControllerRun> = Vec::new();
@@ -571,13 +603,18 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             _ => spec.label(),
         };
         for (&temporal, best_due) in modes.iter().zip(&mut best_fixed_due) {
-            let suffix = if temporal { " +temporal" } else { "" };
+            let suffix = match (temporal, args.warp) {
+                (false, _) => "",
+                (true, false) => " +temporal",
+                (true, true) => " +temporal +warp",
+            };
             source.set_temporal(temporal)?;
             let label = format!("{label}{suffix}");
             runs.push(keep(run_one(
                 source.as_mut(),
                 controller.as_mut(),
                 &label,
+                temporal,
             )?)?);
             if spec.name == "fixed" && *best_due {
                 *best_due = false;
@@ -594,7 +631,12 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 )?;
                 let label = format!("best fixed {}{suffix}", quality_label(&best, &bounds));
                 source.set_temporal(temporal)?;
-                runs.push(keep(run_one(source.as_mut(), fixed.as_mut(), &label)?)?);
+                runs.push(keep(run_one(
+                    source.as_mut(),
+                    fixed.as_mut(),
+                    &label,
+                    temporal,
+                )?)?);
             }
         }
     }
@@ -667,6 +709,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                     shown.quality =
                         displayed::measure(shown, &samples, &mut references, (width, height), ppd)?;
                     shown.pictures.clear();
+                    shown.warps.pictures.clear();
                 }
             }
         }
@@ -697,6 +740,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 .then(|| reference_quality.to_string()),
             every: args.quality.then_some(args.every),
             aligned_band: aligned,
+            warp: args.warp,
         }),
     };
     record::write_frames_csv(&runs, &args.out.join("frames.csv"))?;

@@ -8,7 +8,8 @@ use super::record::{ControllerRun, FrameRow};
 use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
-use std::collections::BTreeMap;
+use serde::Serialize;
+use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 use steadyray_control::{Band, Bounds, Controller, FrameRecord, summarize};
 use steadyray_display::model::{TIME_EPS_MS, refresh_at_or_after};
@@ -29,7 +30,17 @@ pub struct RealSweep {
     pub warmup: u32,
     pub band: Band,
     pub bounds: Bounds,
+    /// Whether a refresh that has no new frame shows the frame on screen warped to the
+    /// refresh's camera (`bench --warp`, `Renderer::present_warped`): each warp is made while
+    /// the next frame renders and counts in that frame's Tp.
+    pub warp: bool,
 }
+
+/// Refreshes past a frame's start whose warps of the frame on screen are made before the
+/// next frame renders (the bench works in turn, so it cannot know yet how many that frame
+/// will leave without a new frame): a frame slower than this leaves the refreshes after
+/// them unwarped, counted as missed.
+pub const WARPS_AHEAD: usize = 4;
 
 /// Which samples of the screen (at the display's refresh rate: sample i at i·P) a run keeps
 /// the pictures of, for a video or the displayed quality.
@@ -79,6 +90,9 @@ pub struct DisplayRun {
     /// The pictures (tone-mapped, at their rendered size) of the frames on screen at the kept
     /// samples, by frame; `None` is the last warm-up frame, on screen before the first.
     pub pictures: BTreeMap<Option<usize>, Rgb8Image>,
+    /// The refreshes that showed the frame on screen warped to their own time (`--warp`),
+    /// with the pictures of those at kept samples.
+    pub warps: Warps,
     /// World time of each frame, s (the warm-up frame's is 0).
     pub world_s: Vec<f64>,
     /// The screen against the references (`bench --quality`), measured after the runs.
@@ -93,6 +107,102 @@ impl DisplayRun {
     /// The world time a frame on screen shows, s.
     pub fn world_of(&self, frame: Option<usize>) -> f64 {
         frame.map_or(0.0, |j| self.world_s[j])
+    }
+}
+
+/// The warped refreshes of a run (`--warp`).
+#[derive(Clone, Debug, Default)]
+pub struct Warps {
+    /// The refreshes (by index: refresh i is at i·P) that showed a warp.
+    pub shown: BTreeSet<usize>,
+    /// The warps' pictures at the kept samples, by refresh.
+    pub pictures: BTreeMap<usize, Rgb8Image>,
+    /// What each warp shown cost, ms.
+    pub ms: Vec<f64>,
+    /// Refreshes without a new frame beyond the [`WARPS_AHEAD`] made for them, shown
+    /// unwarped.
+    pub missed: usize,
+}
+
+/// The warps' figures in `summary.json`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct WarpFigures {
+    /// Refreshes that showed a warp.
+    pub warps_shown: usize,
+    /// Their mean cost, ms.
+    pub warp_ms_mean: f64,
+    /// Refreshes without a new frame shown unwarped (the frame was too slow).
+    pub warps_missed: usize,
+}
+
+impl Warps {
+    /// The figures of a run that warped.
+    pub fn figures(&self) -> WarpFigures {
+        WarpFigures {
+            warps_shown: self.shown.len(),
+            warp_ms_mean: steadyray_display::stats::mean(&self.ms).unwrap_or(0.0),
+            warps_missed: self.missed,
+        }
+    }
+}
+
+/// A warp made ahead of the next frame: the frame on screen warped to refresh `refresh`.
+struct Ahead {
+    refresh: usize,
+    time_ms: f64,
+    ms: f64,
+    picture: Option<Rgb8Image>,
+}
+
+/// The warps of the frame on screen to the refreshes from `first` (at most
+/// [`WARPS_AHEAD`], before the run's end `end_ms`), each at its refresh's world time.
+fn warps_ahead(
+    source: &mut dyn FrameSource,
+    first: usize,
+    period_ms: f64,
+    end_ms: f64,
+) -> Result<Vec<Ahead>> {
+    (first..first + WARPS_AHEAD)
+        .map(|refresh| (refresh, refresh as f64 * period_ms))
+        .take_while(|&(_, time_ms)| time_ms < end_ms - TIME_EPS_MS)
+        .map(|(refresh, time_ms)| {
+            let handed = source
+                .warp(time_ms / 1000.0)
+                .with_context(|| format!("warp to refresh {refresh}"))?;
+            Ok(Ahead {
+                refresh,
+                time_ms,
+                ms: handed.ms,
+                picture: handed.image,
+            })
+        })
+        .collect()
+}
+
+/// How many of the warps `ahead` a frame starting at `start_ms` and busy for `busy_ms`
+/// (render and hand-over) uses: those of the refreshes before it completes, its warps
+/// included. Each warp used delays it, which may leave one more refresh without it.
+fn warps_used(ahead: &[Ahead], start_ms: f64, busy_ms: f64) -> usize {
+    let mut used = 0;
+    loop {
+        let complete = start_ms + busy_ms + ahead[..used].iter().map(|w| w.ms).sum::<f64>();
+        let held = ahead
+            .iter()
+            .take_while(|w| w.time_ms < complete - TIME_EPS_MS)
+            .count();
+        if held == used {
+            return used;
+        }
+        used = held;
+    }
+}
+
+/// The first refresh without a new frame while the next frame renders: the one after the
+/// refresh that showed the frame on screen, or refresh 0 for the warm-up frame.
+fn first_held(screen: &OnScreen, period_ms: f64) -> usize {
+    match screen.frame {
+        Some(_) => refresh_at_or_after(screen.visible_ms, period_ms) as usize + 1,
+        None => 0,
     }
 }
 
@@ -138,17 +248,45 @@ pub fn run_controller_real(
     let (mut rows, mut records, mut world_s) = (Vec::new(), Vec::new(), Vec::new());
     let mut shown_ms = 0u64;
     let (started, mut rendering_ms) = (Instant::now(), 0.0);
+    let mut warps = Warps::default();
     while let Some(slot) = clock.next_frame() {
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
+        let ahead = if sweep.warp {
+            warps_ahead(source, first_held(&screen, period), period, end)
+                .with_context(|| format!("{name}: before frame {}", slot.index))?
+        } else {
+            Vec::new()
+        };
         let at = PathPoint::Time {
             index: slot.index,
             t_s: slot.world_s(),
         };
-        let m = source
+        let mut m = source
             .frame(at, q)
             .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
         let handed = source.hand_over()?;
+        let used = warps_used(&ahead, slot.start_ms, m.report.tp_ms + handed.ms);
+        let warp_ms: f64 = ahead[..used].iter().map(|w| w.ms).sum();
+        if used == ahead.len() && !ahead.is_empty() {
+            let complete = slot.start_ms + m.report.tp_ms + handed.ms + warp_ms;
+            let last = ahead[used - 1].refresh;
+            warps.missed += (last + 1..)
+                .take_while(|&i| {
+                    let t = i as f64 * period;
+                    t < complete - TIME_EPS_MS && t < end - TIME_EPS_MS
+                })
+                .count();
+        }
+        for w in ahead.into_iter().take(used) {
+            warps.shown.insert(w.refresh);
+            warps.ms.push(w.ms);
+            if let Some(picture) = w.picture.filter(|_| keep.wants(w.refresh)) {
+                warps.pictures.insert(w.refresh, picture);
+            }
+        }
+        // The warps made while the frame rendered are part of its time.
+        m.report.tp_ms += warp_ms;
         let tp_ms = m.report.tp_ms;
         rendering_ms += tp_ms + handed.ms;
         if let Err(e) = controller.observe(&m.report) {
@@ -198,6 +336,21 @@ pub fn run_controller_real(
             wall_ms / 1e3
         );
     }
+    if sweep.warp {
+        // The last frame stays on screen to the end: every refresh after its own is warped.
+        let first = first_held(&screen, period);
+        let last = refresh_at_or_after(end, period) as usize;
+        for refresh in first..last {
+            let handed = source
+                .warp(refresh as f64 * period / 1000.0)
+                .with_context(|| format!("{name}: warp to refresh {refresh}"))?;
+            warps.shown.insert(refresh);
+            warps.ms.push(handed.ms);
+            if let Some(picture) = handed.image.filter(|_| keep.wants(refresh)) {
+                warps.pictures.insert(refresh, picture);
+            }
+        }
+    }
     if keep.any_in(screen.visible_ms, f64::INFINITY, period, end)
         && let Some(picture) = screen.picture
     {
@@ -215,6 +368,7 @@ pub fn run_controller_real(
             figures: DisplayFigures::of(&timeline),
             timeline,
             pictures,
+            warps,
             world_s,
             quality: None,
             busy_pct,
@@ -225,15 +379,28 @@ pub fn run_controller_real(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::source::{HandOver, Measured, SimulatedSource, simulated};
+    use crate::bench::displayed::time_key;
+    use crate::bench::source::{HandOver, Measured, SIM_WARP_MS, SimulatedSource, simulated};
     use steadyray_control::{Quality, Setup, from_name};
     use steadyray_display::SyncMode;
     use steadyray_render::SampleStream;
 
-    /// The simulated source, recording the path times it is asked for.
+    /// The simulated source, recording the path times it is asked for, the Tp of each frame
+    /// and the times of the warps.
     struct Recording {
         inner: SimulatedSource,
         times: Vec<f64>,
+        tps: Vec<f64>,
+        warps: Vec<f64>,
+    }
+
+    fn recording() -> Recording {
+        Recording {
+            inner: simulated(720),
+            times: Vec::new(),
+            tps: Vec::new(),
+            warps: Vec::new(),
+        }
     }
 
     impl FrameSource for Recording {
@@ -250,10 +417,16 @@ mod tests {
             if let PathPoint::Time { t_s, .. } = at {
                 self.times.push(t_s);
             }
-            self.inner.frame(at, q)
+            let m = self.inner.frame(at, q)?;
+            self.tps.push(m.report.tp_ms);
+            Ok(m)
         }
         fn hand_over(&mut self) -> Result<HandOver> {
             self.inner.hand_over()
+        }
+        fn warp(&mut self, t_s: f64) -> Result<HandOver> {
+            self.warps.push(t_s);
+            self.inner.warp(t_s)
         }
         fn takes_wall_time(&self) -> bool {
             self.inner.takes_wall_time()
@@ -274,10 +447,7 @@ mod tests {
 
     #[test]
     fn warm_up_frames_lead_up_to_the_start_one_refresh_apart() {
-        let mut source = Recording {
-            inner: simulated(720),
-            times: Vec::new(),
-        };
+        let mut source = recording();
         let bounds = Bounds::default();
         let setup = Setup::new(Band::PAPER, bounds, Quality::new(1.0, 4, 1.0)).unwrap();
         let mut controller = from_name("predictive", setup, "").unwrap();
@@ -287,6 +457,7 @@ mod tests {
             warmup: 4,
             band: Band::PAPER,
             bounds,
+            warp: false,
         };
         let run = run_controller_real(
             &mut source,
@@ -301,6 +472,79 @@ mod tests {
         assert_eq!(warm, [-0.08, -0.06, -0.04, -0.02]);
         assert_eq!(counted.len(), run.rows.len());
         assert!(counted.iter().all(|&t| t >= 0.0), "{counted:?}");
+    }
+
+    /// With warps, every refresh that shows no new frame (the warm-up frame's at the start,
+    /// each frame's after its first) shows a warp, and each frame's Tp is its render time
+    /// plus the warps made while it rendered: those of the refreshes before it completed.
+    #[test]
+    fn warps_fill_the_refreshes_without_a_new_frame_inside_the_next_frames_time() {
+        let mut source = recording();
+        let bounds = Bounds::default();
+        let setup = Setup::new(Band::PAPER, bounds, Quality::new(1.0, 4, 1.0)).unwrap();
+        let mut controller = from_name("predictive", setup, "").unwrap();
+        let display = DisplayConfig::new(60.0, SyncMode::Vsync).unwrap();
+        let sweep = RealSweep {
+            display,
+            duration_s: 1.0,
+            warmup: 4,
+            band: Band::PAPER,
+            bounds,
+            warp: true,
+        };
+        let run = run_controller_real(
+            &mut source,
+            controller.as_mut(),
+            "predictive",
+            &sweep,
+            Keep::Every(1),
+            &ProgressBar::hidden(),
+        )
+        .unwrap();
+        let shown = run.display.unwrap();
+        let period = display.period_ms();
+        let frames = shown.timeline.frames();
+        let held: BTreeSet<usize> = shown
+            .timeline
+            .refreshes()
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| {
+                r.frame
+                    .is_none_or(|j| frames[j].visible_ms < r.time_ms - TIME_EPS_MS)
+            })
+            .map(|(i, _)| i)
+            .collect();
+        assert!(held.len() > 20, "the paper's band holds frames: {held:?}");
+        assert_eq!(shown.warps.shown, held);
+        assert_eq!(shown.warps.missed, 0);
+        assert!(shown.warps.ms.iter().all(|&ms| ms == SIM_WARP_MS));
+        // The simulated source has no pictures to keep.
+        assert!(shown.warps.pictures.is_empty());
+        let rendered = &source.tps[4..];
+        for (j, f) in frames.iter().enumerate() {
+            let made_meanwhile = held
+                .iter()
+                .filter(|&&i| {
+                    let t = i as f64 * period;
+                    t >= f.start_ms - TIME_EPS_MS && t < f.complete_ms() - TIME_EPS_MS
+                })
+                .count();
+            let expected = rendered[j] + SIM_WARP_MS * made_meanwhile as f64;
+            assert!(
+                (f.tp_ms - expected).abs() < 1e-9,
+                "frame {j}: Tp {} against {} rendered and {made_meanwhile} warps",
+                f.tp_ms,
+                rendered[j]
+            );
+            assert!((run.rows[j].tp_ms - f.tp_ms).abs() < 1e-9, "frame {j}");
+        }
+        let warp_times: BTreeSet<i64> = source.warps.iter().map(|&t| time_key(t)).collect();
+        assert!(
+            held.iter()
+                .all(|&i| warp_times.contains(&time_key(i as f64 * period / 1000.0))),
+            "each warp shows its refresh's time"
+        );
     }
 
     #[test]

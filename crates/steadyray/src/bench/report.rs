@@ -1,6 +1,7 @@
 //! The terminal table and `summary.json`.
 
 use super::machine::Machine;
+use super::real_clock::WarpFigures;
 use super::record::ControllerRun;
 use anyhow::{Context, Result};
 use serde::Serialize;
@@ -54,6 +55,8 @@ pub struct RealContext {
     /// How `--band refresh` derived the band.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub aligned_band: Option<AlignedBand>,
+    /// Whether the temporal runs warped their refreshes without a new frame (`--warp`).
+    pub warp: bool,
 }
 
 /// A band derived from the display (`--band refresh[:M]`).
@@ -83,6 +86,9 @@ struct ControllerEntry<'a> {
     /// the renderer.
     #[serde(skip_serializing_if = "Option::is_none")]
     busy_pct: Option<f64>,
+    /// The refreshes warped (real clock, `--warp`, the runs that warped).
+    #[serde(flatten)]
+    warps: Option<WarpFigures>,
     /// The screen against the world at each sampled refresh (real clock, `--quality`).
     #[serde(flatten)]
     displayed: Option<DisplayedEntry>,
@@ -171,6 +177,11 @@ pub fn write_summary(
                 flip_p95: r.flip.map(|f| f.1),
                 display: r.display.as_ref().map(|d| &d.figures),
                 busy_pct: r.display.as_ref().and_then(|d| d.busy_pct),
+                warps: r
+                    .display
+                    .as_ref()
+                    .filter(|d| !d.warps.shown.is_empty() || d.warps.missed > 0)
+                    .map(|d| d.warps.figures()),
                 displayed: r
                     .display
                     .as_ref()

@@ -60,6 +60,11 @@ pub trait FrameSource {
     /// way to a window (`Renderer::present`), with its picture read back for the scores
     /// outside that time; the simulated renderer takes [`SIM_HAND_OVER_MS`].
     fn hand_over(&mut self) -> Result<HandOver>;
+    /// Hands the last frame to the display again as the camera at path time `t_s` sees it,
+    /// for a refresh that has no new frame (`Renderer::present_warped`), and measures what
+    /// that costs, with its picture read back outside that time; the simulated renderer
+    /// takes [`SIM_WARP_MS`].
+    fn warp(&mut self, t_s: f64) -> Result<HandOver>;
     /// Whether a frame's Tp and hand-over are wall time spent in these calls (a renderer),
     /// not a simulated time: only then is their share of a run's wall time a measurement.
     fn takes_wall_time(&self) -> bool;
@@ -94,6 +99,9 @@ pub fn render_reference(
 
 /// The simulated renderer's hand-over cost, ms.
 pub const SIM_HAND_OVER_MS: f64 = 1.0;
+
+/// The simulated renderer's cost of a warped refresh, ms.
+pub const SIM_WARP_MS: f64 = 0.5;
 
 /// The image size for a resolution scale: each side scaled and rounded, at least 1 pixel.
 pub fn scaled_size(width: u32, height: u32, scale: f32) -> (u32, u32) {
@@ -161,6 +169,11 @@ impl FrameSource for RendererSource {
         })
     }
 
+    fn warp(&mut self, t_s: f64) -> Result<HandOver> {
+        let camera = self.scene.camera_at_time(t_s);
+        warp_measured(self.renderer.as_mut(), &camera)
+    }
+
     fn takes_wall_time(&self) -> bool {
         true
     }
@@ -180,6 +193,23 @@ impl FrameSource for RendererSource {
     fn set_sample_stream(&mut self, stream: SampleStream) {
         self.renderer.set_sample_stream(stream);
     }
+}
+
+/// `renderer`'s last frame handed to the display again as `camera` sees it
+/// (`Renderer::present_warped`): what that cost, ms, and the picture, read back outside that
+/// time when it stayed on the device.
+pub fn warp_measured(renderer: &mut dyn Renderer, camera: &Camera) -> Result<HandOver> {
+    let start = Instant::now();
+    let presented = renderer.present_warped(camera)?;
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    let picture = match presented {
+        Presented::Host(picture) => rgb8(picture)?,
+        Presented::Device => read_picture(renderer)?,
+    };
+    Ok(HandOver {
+        ms,
+        image: Some(picture),
+    })
 }
 
 /// The last frame's picture as `renderer`'s display shows it (`Renderer::read_picture`), as
@@ -295,6 +325,13 @@ impl FrameSource for SimulatedSource {
     fn hand_over(&mut self) -> Result<HandOver> {
         Ok(HandOver {
             ms: SIM_HAND_OVER_MS,
+            image: None,
+        })
+    }
+
+    fn warp(&mut self, _t_s: f64) -> Result<HandOver> {
+        Ok(HandOver {
+            ms: SIM_WARP_MS,
             image: None,
         })
     }

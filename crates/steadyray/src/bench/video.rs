@@ -7,7 +7,7 @@
 //! DIR/reference/reference.json    what the references are, to reuse them in a later bench
 //! DIR/reference.y4m               the same as a video (reference.mkv with ffmpeg)
 //! DIR/<run>/displayed/frame_00000.png   the screen at refresh i
-//! DIR/<run>/timings.csv           per refresh: the frame on screen and its world time
+//! DIR/<run>/timings.csv           per refresh: the frame on screen, its world time, whether warped
 //! DIR/<run>/displayed.y4m         the same as a video (displayed.mkv with ffmpeg)
 //! ```
 //!
@@ -232,17 +232,20 @@ pub fn write_run(
     let frames_dir = staging.temp.join("displayed");
     std::fs::create_dir_all(&frames_dir)?;
     let samples = screen_samples(run, display.period_ms(), |_| true);
-    let mut csv = String::from("refresh,time_ms,frame,world_s,age_ms\n");
+    let mut csv = String::from("refresh,time_ms,frame,world_s,age_ms,warped\n");
     let mut movie = Y4mWriter::create(
         &staging.temp.join("displayed.y4m"),
         size,
         display.refresh_hz,
     )?;
-    let shown: Vec<&[ScreenSample]> = samples.chunk_by(|a, b| a.frame == b.frame).collect();
+    // Refreshes showing the same picture: a frame's, or a warp's alone.
+    let shown: Vec<&[ScreenSample]> = samples
+        .chunk_by(|a, b| a.frame == b.frame && !a.warped && !b.warped)
+        .collect();
     for batch in shown.chunks(ENCODE_BATCH) {
         let encoded = batch
             .par_iter()
-            .map(|refreshes| Encoded::new(&screen_picture(run, refreshes[0].frame, size)?))
+            .map(|refreshes| Encoded::new(&screen_picture(run, &refreshes[0], size)?))
             .collect::<Result<Vec<_>>>()?;
         for (refreshes, picture) in batch.iter().zip(&encoded) {
             for s in *refreshes {
@@ -252,11 +255,12 @@ pub fn write_run(
                     .frame
                     .map_or_else(|| "warmup".to_string(), |j| j.to_string());
                 csv.push_str(&format!(
-                    "{},{:.4},{frame},{:.6},{:.4}\n",
+                    "{},{:.4},{frame},{:.6},{:.4},{}\n",
                     s.index,
                     1000.0 * s.time_s,
                     s.world_s,
-                    1000.0 * (s.time_s - s.world_s)
+                    1000.0 * (s.time_s - s.world_s),
+                    u8::from(s.warped)
                 ));
             }
         }

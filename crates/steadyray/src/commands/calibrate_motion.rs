@@ -17,9 +17,10 @@
 
 use crate::bench::displayed::{TimedReferences, measure, screen_samples};
 use crate::bench::machine::git_revision;
-use crate::bench::real_clock::DisplayRun;
+use crate::bench::real_clock::{DisplayRun, Warps};
 use crate::bench::source::{
     FrameSource, HandOver, Measured, PathPoint, read_picture, render_measured, set_history,
+    warp_measured,
 };
 use crate::bench::video::{self, ReferenceKey, VideoIndex, VideoRun};
 use anyhow::{Context, Result, bail};
@@ -219,6 +220,11 @@ impl FrameSource for StimulusSource<'_> {
         })
     }
 
+    fn warp(&mut self, t_s: f64) -> Result<HandOver> {
+        let camera = self.turn.camera(t_s);
+        warp_measured(&mut *self.renderer, &camera)
+    }
+
     fn takes_wall_time(&self) -> bool {
         false
     }
@@ -271,6 +277,7 @@ fn stimulus_run(
         figures: DisplayFigures::of(&timeline),
         timeline,
         pictures,
+        warps: Warps::default(),
         world_s,
         quality: None,
         busy_pct: None,
