@@ -25,9 +25,11 @@ pub use ray::{EPS, T_MIN};
 
 use glam::{Vec3, Vec3A};
 use integrator::{SampleId, trace};
+use rayon::prelude::*;
 use render::{FrameOutputs, SamplePattern};
 use std::time::Instant;
 use steadyray_render::temporal::sample_base;
+use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, MAX_DEPTH, Picture, Presented, RenderError, RenderSettings,
     Renderer, SampleStream, SettingsError, TemporalSettings, TimingSource, check_time,
@@ -140,6 +142,27 @@ impl CpuRenderer {
     }
 }
 
+/// The picture of a `width` × `height` image whose pixel i is `rgb(i)`, tone-mapped as
+/// [`Image::to_srgb8_rgba`] does, a row at a time on the current rayon pool.
+fn tone_mapped(width: u32, height: u32, rgb: impl Fn(usize) -> [f32; 3] + Sync) -> Picture {
+    let row = width as usize;
+    let mut rgba = vec![255u8; 4 * row * height as usize];
+    rgba.par_chunks_mut(4 * row)
+        .enumerate()
+        .for_each(|(y, out)| {
+            for (x, pixel) in out.chunks_exact_mut(4).enumerate() {
+                for (channel, c) in pixel.iter_mut().zip(rgb(y * row + x)) {
+                    *channel = linear_to_srgb8_fast(c);
+                }
+            }
+        });
+    Picture {
+        width,
+        height,
+        rgba,
+    }
+}
+
 impl Renderer for CpuRenderer {
     fn info(&self) -> BackendInfo {
         let model = device::cpu_model().unwrap_or_else(|| "unknown CPU".to_string());
@@ -248,12 +271,17 @@ impl Renderer for CpuRenderer {
         if let Some(warped) = &self.warped {
             return Ok(warped.clone());
         }
-        let image = self.read_image()?;
-        Ok(Picture {
-            width: image.width,
-            height: image.height,
-            rgba: image.to_srgb8_rgba(),
-        })
+        let pool = &self.pool;
+        match &self.history {
+            Some(history) => history
+                .picture(|width, height, rgb| pool.install(|| tone_mapped(width, height, rgb)))
+                .ok_or(RenderError::NoFrame),
+            None => {
+                let image = self.image.as_ref().ok_or(RenderError::NoFrame)?;
+                let pixels = &image.pixels;
+                Ok(pool.install(|| tone_mapped(image.width, image.height, |i| pixels[i])))
+            }
+        }
     }
 
     fn present_warped(&mut self, camera: &Camera) -> Result<Presented, RenderError> {
@@ -263,15 +291,10 @@ impl Renderer for CpuRenderer {
             )
         })?;
         let size = history.clock.settings();
-        let image = self
+        let picture = self
             .pool
             .install(|| history.warped(&camera.frame(size.width, size.height)))
             .ok_or(RenderError::NoFrame)?;
-        let picture = Picture {
-            width: image.width,
-            height: image.height,
-            rgba: image.to_srgb8_rgba(),
-        };
         self.warped = Some(picture.clone());
         Ok(Presented::Host(picture))
     }

@@ -18,6 +18,7 @@ pub fn linear_to_srgb8(c: f32) -> u8 {
 /// gives a bucket's first level; the one or two thresholds inside a bucket settle the rest.
 /// About ten times faster than the transfer function's `powf`, which matters where every
 /// pixel of every frame is converted on one thread (the CPU backend's way to a window).
+#[inline]
 pub fn linear_to_srgb8_fast(c: f32) -> u8 {
     let table = Srgb8Table::get();
     let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
@@ -40,6 +41,7 @@ struct Srgb8Table {
 }
 
 impl Srgb8Table {
+    #[inline]
     fn get() -> &'static Self {
         static TABLE: std::sync::OnceLock<Srgb8Table> = std::sync::OnceLock::new();
         TABLE.get_or_init(|| {

@@ -131,6 +131,22 @@ impl History {
         self.camera = Some(camera);
     }
 
+    /// What `picture` makes of the accumulated image (its size and each pixel's colour by
+    /// index), if a frame was accumulated.
+    pub fn picture<T>(
+        &self,
+        picture: impl FnOnce(u32, u32, &(dyn Fn(usize) -> [f32; 3] + Sync)) -> T,
+    ) -> Option<T> {
+        let settings = self.clock.settings();
+        let colour = &self.colour;
+        self.accumulated.then(|| {
+            picture(settings.width, settings.height, &|i: usize| {
+                let [r, g, b, _] = colour[i];
+                [r, g, b]
+            })
+        })
+    }
+
     /// The accumulated image, if a frame was accumulated.
     pub fn image(&self) -> Option<Image> {
         let settings = self.clock.settings();

@@ -7,8 +7,9 @@
 use super::History;
 use glam::Vec4;
 use rayon::prelude::*;
-use steadyray_render::Image;
+use steadyray_render::Picture;
 use steadyray_render::temporal::{catmull_rom, floor, project4};
+use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_scene::camera::CameraFrame;
 
 /// Fixed-point steps from a screen pixel to the history pixel that lands on it: the motion
@@ -21,8 +22,8 @@ const NO_MOTION: [f32; 2] = [f32::NAN; 2];
 
 impl History {
     /// The accumulated image as camera frame `to` (made for the history's size) sees it,
-    /// or `None` before the first frame.
-    pub fn warped(&self, to: &CameraFrame) -> Option<Image> {
+    /// tone-mapped as the display shows it, or `None` before the first frame.
+    pub fn warped(&self, to: &CameraFrame) -> Option<Picture> {
         let from = self.camera.filter(|_| self.accumulated)?;
         let settings = self.clock.settings();
         let (width, height) = (settings.width as usize, settings.height as usize);
@@ -51,12 +52,11 @@ impl History {
                     }
                 }
             });
-        let mut pixels = vec![[0.0f32; 3]; width * height];
-        pixels
-            .par_chunks_mut(width)
+        let mut rgba = vec![255u8; 4 * width * height];
+        rgba.par_chunks_mut(4 * width)
             .enumerate()
             .for_each(|(y, row)| {
-                for (x, pixel) in row.iter_mut().enumerate() {
+                for (x, pixel) in row.chunks_exact_mut(4).enumerate() {
                     let target = [x as f32 + 0.5, y as f32 + 0.5];
                     let mut at = target;
                     for _ in 0..WARP_STEPS {
@@ -68,13 +68,16 @@ impl History {
                         }
                         at = [target[0] - m[0], target[1] - m[1]];
                     }
-                    *pixel = self.filtered_at(at, (width, height));
+                    let colour = self.filtered_at(at, (width, height));
+                    for (channel, c) in pixel.iter_mut().zip(colour) {
+                        *channel = linear_to_srgb8_fast(c);
+                    }
                 }
             });
-        Some(Image {
+        Some(Picture {
             width: settings.width,
             height: settings.height,
-            pixels,
+            rgba,
         })
     }
 
@@ -92,12 +95,24 @@ impl History {
         let rows: [usize; 4] = std::array::from_fn(|k| tap(fv, k as i64 - 1, height - 1));
         let at_tap = |c: usize, r: usize| Vec4::from_array(self.colour[r * width + c]);
         let mut sum = Vec4::ZERO;
-        for (&r, &wb) in rows.iter().zip(&wy) {
-            let mut line = Vec4::ZERO;
-            for (&c, &wa) in columns.iter().zip(&wx) {
-                line += wa * at_tap(c, r);
+        if columns[3] == columns[0] + 3 {
+            // Inside the image across: each row's four taps lie side by side.
+            for (&r, &wb) in rows.iter().zip(&wy) {
+                let taps = &self.colour[r * width + columns[0]..][..4];
+                let mut line = Vec4::ZERO;
+                for (tap, &wa) in taps.iter().zip(&wx) {
+                    line += wa * Vec4::from_array(*tap);
+                }
+                sum += wb * line;
             }
-            sum += wb * line;
+        } else {
+            for (&r, &wb) in rows.iter().zip(&wy) {
+                let mut line = Vec4::ZERO;
+                for (&c, &wa) in columns.iter().zip(&wx) {
+                    line += wa * at_tap(c, r);
+                }
+                sum += wb * line;
+            }
         }
         let near = [
             at_tap(columns[1], rows[1]),
