@@ -2,6 +2,8 @@
 
 use crate::layout::COUNTER_SLOTS;
 use crate::timing::TIMESTAMP_BYTES;
+use crate::tonemap::level_thresholds;
+use wgpu::util::DeviceExt;
 
 /// The smallest buffer allocated: one element of any GPU struct of [`crate::layout`].
 const MIN_BUFFER_BYTES: u64 = 256;
@@ -77,12 +79,16 @@ impl GrowBuffer {
 /// Bytes of the 64-bit ray totals (the most counters a frame can have).
 pub(crate) const TOTALS_BYTES: u64 = COUNTER_SLOTS as u64 * 8;
 
-/// The per-frame buffers: outputs, counters and readback staging, grown with the image.
+/// The per-frame buffers: outputs, counters and readback staging, grown with the image, and
+/// the tone map's table.
 pub(crate) struct FrameBuffers {
     /// Linear RGBA f32 per pixel.
     pub(crate) image: GrowBuffer,
     /// Packed RGBA8 per pixel, written by the tone-map pass.
     pub(crate) srgb8: GrowBuffer,
+    /// The smallest radiance of each tone-map level 1..=255 ([`level_thresholds`]), which
+    /// the tone-map passes look levels up in.
+    pub(crate) srgb8_levels: wgpu::Buffer,
     /// `counter_stride` u32 counters per workgroup.
     pub(crate) group_counts: GrowBuffer,
     /// 64-bit totals per counter.
@@ -101,6 +107,11 @@ impl FrameBuffers {
         Self {
             image: GrowBuffer::new(device, "image", U::STORAGE | U::COPY_SRC, 0),
             srgb8: GrowBuffer::new(device, "srgb8 image", U::STORAGE | U::COPY_SRC, 0),
+            srgb8_levels: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("srgb8 levels"),
+                contents: bytemuck::cast_slice(&level_thresholds()),
+                usage: U::STORAGE,
+            }),
             group_counts: GrowBuffer::new(
                 device,
                 "workgroup ray counts",

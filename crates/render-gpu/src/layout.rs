@@ -285,6 +285,19 @@ pub struct GpuTemporalParams {
     pub spp: f32,
 }
 
+/// The warped refresh's uniform (WGSL `WarpParams`, `shaders/warp.wgsl`): the camera frame of
+/// the history's last frame and the refresh's, both for the history's size, and that size.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuWarpParams {
+    pub history_view: GpuCameraView,
+    pub refresh_view: GpuCameraView,
+    pub width: u32,
+    pub height: u32,
+    pub pad0: u32,
+    pub pad1: u32,
+}
+
 /// [`GpuSurfaceMotion::kind`] of a surface where it was.
 pub const SURFACE_STILL: u32 = 0;
 /// [`GpuSurfaceMotion::kind`] of a surface that moved.
@@ -379,13 +392,15 @@ mod tests {
             .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
     }
 
-    /// Both modules (the renderer's and the ray caster's) parse and validate without a GPU.
+    /// Every module (the renderer's, the ray caster's, the temporal resolve's and the warp's)
+    /// parses and validates without a GPU.
     #[test]
     fn wgsl_modules_validate() {
         for source in [
             crate::pipeline::SHADER_SOURCE,
             crate::pipeline::RAYCAST_SOURCE,
             crate::pipeline::TEMPORAL_SOURCE,
+            crate::pipeline::WARP_SOURCE,
         ] {
             let module = parse(source);
             naga::valid::Validator::new(
@@ -586,6 +601,17 @@ mod tests {
                     world_moved,
                     surface_count,
                     spp,
+                }),
+            ),
+            (
+                "WarpParams",
+                rust_layout!(GpuWarpParams {
+                    history_view,
+                    refresh_view,
+                    width,
+                    height,
+                    pad0,
+                    pad1,
                 }),
             ),
             (

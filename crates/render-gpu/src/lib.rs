@@ -19,6 +19,8 @@ mod scene_buffers;
 mod surface;
 mod temporal;
 mod timing;
+mod tonemap;
+mod warp;
 
 pub use adapter::{AdapterSummary, DeviceKind, GpuOptions, list_adapters};
 pub use raycast::{CastOutcome, GpuRayCaster};

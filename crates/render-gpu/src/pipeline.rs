@@ -23,12 +23,23 @@ pub(crate) const SHADER_SOURCE: &str = concat!(
 );
 
 /// The temporal resolve's WGSL module ([`crate::temporal`]): layouts, the sample counts, the
-/// sRGB rule, and the resolve and history tone map with their bindings.
+/// sRGB rule, the reprojection rules, and the resolve and history tone map with their
+/// bindings.
 pub(crate) const TEMPORAL_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
     include_str!("shaders/sampling.wgsl"),
     include_str!("shaders/srgb.wgsl"),
+    include_str!("shaders/reprojection.wgsl"),
     include_str!("shaders/temporal.wgsl"),
+);
+
+/// The warped refresh's WGSL module ([`crate::warp`]): layouts, the sRGB rule, the
+/// reprojection rules the resolve uses, and the motion and colour passes with their bindings.
+pub(crate) const WARP_SOURCE: &str = concat!(
+    include_str!("shaders/layout.wgsl"),
+    include_str!("shaders/srgb.wgsl"),
+    include_str!("shaders/reprojection.wgsl"),
+    include_str!("shaders/warp.wgsl"),
 );
 
 /// The ray caster's WGSL module ([`crate::GpuRayCaster`]): layouts, eye rays and the same
@@ -57,6 +68,7 @@ pub(crate) mod binding {
     pub const TOP_LEAVES: u32 = 12;
     pub const INSTANCES: u32 = 13;
     pub const SURFACE_IDS: u32 = 14;
+    pub const SRGB8_LEVELS: u32 = 15;
 }
 
 /// The three entry points of [`SHADER_SOURCE`] over one bind group layout.
@@ -118,6 +130,7 @@ impl Pipelines {
                 layout_entry(TOP_LEAVES, read),
                 layout_entry(INSTANCES, read),
                 layout_entry(SURFACE_IDS, read),
+                layout_entry(SRGB8_LEVELS, read),
             ],
         });
         let module = shader_module(device, SHADER_SOURCE)?;
@@ -149,10 +162,10 @@ pub(crate) fn shader_module(
         // SAFETY: wgpu asks that no loop of a module compiled without loop bounding runs
         // forever. Every loop of this crate's shaders ends: the per-light, per-shape,
         // per-sample and per-bounce loops count up to bounds the host validates (R at most
-        // MAX_DEPTH), the reductions step over fixed or validated counts, the ray caster's
-        // block loops end when the block counter passes the dispatch's blocks, and the BVH
-        // traversals visit each node of a tree (built by steadyray-accel, each node with one
-        // parent) at most once.
+        // MAX_DEPTH), the reductions, the tone map's search and the warp's steps and taps
+        // step over fixed or validated counts, the ray caster's block loops end when the
+        // block counter passes the dispatch's blocks, and the BVH traversals visit each node
+        // of a tree (built by steadyray-accel, each node with one parent) at most once.
         unsafe {
             device.create_shader_module_trusted(
                 wgpu::ShaderModuleDescriptor {

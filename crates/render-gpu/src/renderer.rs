@@ -9,6 +9,7 @@ use crate::pipeline::{Pipelines, binding, buffer_entry};
 use crate::scene_buffers::{GpuWorld, PackedScene, SceneBuffers};
 use crate::temporal::TemporalPass;
 use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
+use crate::warp::WarpPass;
 use std::time::Instant;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::two_level::SceneLayout;
@@ -26,15 +27,28 @@ struct LoadedScene {
     world: GpuWorld,
 }
 
-/// The image the last frame left: its size, whether it is the temporal history, and whether
-/// the RGBA8 buffer already holds its tone map (so that a presented frame read back as a
-/// picture is not tone-mapped twice).
+/// The image the last frame left: its size, whether it is the temporal history, and what
+/// the RGBA8 buffer holds of it (so that a presented frame read back as a picture is not
+/// tone-mapped twice, and a warped refresh stays on display until the frame is presented
+/// again).
 #[derive(Clone, Copy, Debug)]
 struct LastFrame {
     width: u32,
     height: u32,
     temporal: bool,
-    tone_mapped: bool,
+    shown: Shown,
+}
+
+/// What the RGBA8 buffer holds of the last frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Shown {
+    /// Nothing of it: showing or reading its picture needs its tone map first.
+    Nothing,
+    /// Its tone map.
+    Frame,
+    /// A warped refresh of it ([`Renderer::present_warped`]): the display's picture until
+    /// the next frame or [`Renderer::present`].
+    Warp,
 }
 
 /// The GPU backend. It owns its device (create one per process) and keeps pipelines and
@@ -44,7 +58,8 @@ struct LastFrame {
 /// [`Renderer::render`] waits for the frame and reads back only the ray counts and
 /// timestamps; [`Renderer::read_image`] (linear) and [`GpuRenderer::read_srgb8`]
 /// (tone-mapped) read the image. In the temporal mode the history stays on the device and
-/// the resolve pass runs inside the frame's timestamps.
+/// the resolve pass runs inside the frame's timestamps; a warped refresh
+/// ([`Renderer::present_warped`]) reads it there.
 pub struct GpuRenderer {
     ctx: GpuContext,
     pipelines: Pipelines,
@@ -56,6 +71,7 @@ pub struct GpuRenderer {
     bind_group: Option<wgpu::BindGroup>,
     scene: Option<LoadedScene>,
     temporal: TemporalPass,
+    warp: WarpPass,
     /// The samples plain frames draw.
     stream: SampleStream,
     last_frame: Option<LastFrame>,
@@ -84,6 +100,7 @@ impl GpuRenderer {
         let scene_buffers = SceneBuffers::new(&ctx.device);
         let frame_buffers = FrameBuffers::new(&ctx.device);
         let temporal = TemporalPass::new(&ctx.device)?;
+        let warp = WarpPass::new(&ctx.device)?;
         ctx.errors.check()?;
         Ok(Self {
             ctx,
@@ -95,6 +112,7 @@ impl GpuRenderer {
             bind_group: None,
             scene: None,
             temporal,
+            warp,
             stream: SampleStream::Frames,
             last_frame: None,
         })
@@ -110,9 +128,10 @@ impl GpuRenderer {
         self.timer.is_some()
     }
 
-    /// The last frame tone-mapped on the GPU (`linear_to_srgb8` per channel) as RGBA bytes,
-    /// row-major, top row first: the same bytes as `read_image()?.to_srgb8_rgba()` up to
-    /// the GPU's `pow` rounding (at most one level, rarely).
+    /// The last frame tone-mapped on the GPU (`linear_to_srgb8` per channel, to the bit: the
+    /// shaders look each level up in a table of the host's) as RGBA bytes, row-major, top row
+    /// first: the same bytes as `read_image()?.to_srgb8_rgba()`. After [`Renderer::present_warped`] it is the warped
+    /// picture on display instead, until the next frame or [`Renderer::present`].
     pub fn read_srgb8(&mut self) -> Result<Vec<u8>, RenderError> {
         let last = self.last_frame.ok_or(RenderError::NoFrame)?;
         let size = u64::from(last.width) * u64::from(last.height) * 4;
@@ -148,6 +167,7 @@ impl GpuRenderer {
                         buffer_entry(binding::TOP_LEAVES, s.top_leaves.buffer()),
                         buffer_entry(binding::INSTANCES, s.instances.buffer()),
                         buffer_entry(binding::SURFACE_IDS, s.surface_ids.buffer()),
+                        buffer_entry(binding::SRGB8_LEVELS, &f.srgb8_levels),
                     ],
                 })
         });
@@ -442,7 +462,7 @@ impl Renderer for GpuRenderer {
             width: frame_width,
             height: frame_height,
             temporal: step.is_some(),
-            tone_mapped: false,
+            shown: Shown::Nothing,
         });
         Ok(FrameStats {
             render_ms,
@@ -486,6 +506,12 @@ impl Renderer for GpuRenderer {
     }
 
     fn present(&mut self) -> Result<Presented, RenderError> {
+        // The frame itself goes on display again, replacing any warped refresh of it.
+        if let Some(last) = &mut self.last_frame
+            && last.shown == Shown::Warp
+        {
+            last.shown = Shown::Nothing;
+        }
         self.display_image()?;
         self.ctx.wait()?;
         Ok(Presented::Device)
@@ -501,10 +527,36 @@ impl Renderer for GpuRenderer {
         })
     }
 
-    fn present_warped(&mut self, _camera: &Camera) -> Result<Presented, RenderError> {
-        Err(RenderError::Unavailable(
-            "the GPU backend does not warp refreshes yet (the CPU backend does)".into(),
-        ))
+    fn present_warped(&mut self, camera: &Camera) -> Result<Presented, RenderError> {
+        let settings = self.temporal.settings().ok_or_else(|| {
+            RenderError::Unavailable(
+                "a warped refresh needs the temporal mode (its history and geometry)".into(),
+            )
+        })?;
+        if !self.last_frame.is_some_and(|last| last.temporal) {
+            return Err(RenderError::NoFrame);
+        }
+        let history = self.temporal.resolved().ok_or(RenderError::NoFrame)?;
+        self.ctx.errors.check()?;
+        let view = camera.frame(settings.width, settings.height);
+        let mut encoder = self.ctx.encoder("warped refresh");
+        let device = &self.ctx.device;
+        let commands = scoped(device, "cannot record the warped refresh", || {
+            self.warp.encode(
+                device,
+                &self.ctx.queue,
+                &mut encoder,
+                &history,
+                &view,
+                &self.frame_buffers,
+            );
+            encoder.finish()
+        })?;
+        self.ctx.submit_and_wait(commands)?;
+        if let Some(last) = &mut self.last_frame {
+            last.shown = Shown::Warp;
+        }
+        Ok(Presented::Device)
     }
 
     fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<(), RenderError> {
@@ -531,7 +583,7 @@ impl Renderer for GpuRenderer {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::pipeline::{compute_pipeline, shader_module};
+    use crate::pipeline::{compute_pipeline, layout_entry, shader_module};
 
     /// A renderer on any adapter (software included), or None after a loud skip message;
     /// panics instead when STEADYRAY_REQUIRE_GPU=1.
@@ -640,6 +692,106 @@ pub(crate) mod tests {
         });
         assert_eq!(parse_totals(&bytes), expected);
         assert!(expected[..2].iter().all(|&t| t > u64::from(u32::MAX)));
+    }
+
+    /// The GPU's tone map (`shaders/srgb.wgsl`, the renderer's level table) is the host's
+    /// to the bit at every level's edge, where a `pow` that rounds unlike the host's moves a
+    /// radiance to the next level, across [0, 1], and for NaN, signed zeros, infinities and
+    /// radiances past 1.
+    #[test]
+    fn tone_map_is_the_hosts_at_every_levels_edge() {
+        use steadyray_render::tonemap::linear_to_srgb8;
+        use wgpu::util::DeviceExt;
+        let Some(renderer) = test_renderer() else {
+            return;
+        };
+        let mut values: Vec<f32> = crate::tonemap::level_thresholds()
+            .iter()
+            .flat_map(|t| [f32::from_bits(t.to_bits() - 1), *t])
+            .collect();
+        values.extend((0..1f32.to_bits()).step_by(65_537).map(f32::from_bits));
+        values.extend([
+            f32::NAN,
+            -0.0,
+            0.0,
+            -1.0,
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+            1.0,
+            2.0,
+        ]);
+        let source = concat!(
+            include_str!("shaders/srgb.wgsl"),
+            "
+            @group(0) @binding(0) var<storage, read> values: array<f32>;
+            @group(0) @binding(1) var<storage, read_write> levels: array<u32>;
+            @group(0) @binding(2) var<storage, read> srgb8_levels: array<f32>;
+
+            @compute @workgroup_size(64)
+            fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+                if gid.x < arrayLength(&values) {
+                    levels[gid.x] = linear_to_srgb8(values[gid.x]);
+                }
+            }
+            "
+        );
+        let ctx = &renderer.ctx;
+        let device = &ctx.device;
+        let read = wgpu::BufferBindingType::Storage { read_only: true };
+        let write = wgpu::BufferBindingType::Storage { read_only: false };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("tone map test"),
+            entries: &[
+                layout_entry(0, read),
+                layout_entry(1, write),
+                layout_entry(2, read),
+            ],
+        });
+        let module = shader_module(device, source).unwrap();
+        let pipeline = compute_pipeline(device, &layout, &module, "main").unwrap();
+        let bytes = (values.len() * 4) as u64;
+        let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("tone map test values"),
+            contents: bytemuck::cast_slice(&values),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let buffer = |label, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        use wgpu::BufferUsages as U;
+        let output = buffer("tone map test levels", U::STORAGE | U::COPY_SRC);
+        let readback = buffer("tone map test readback", U::MAP_READ | U::COPY_DST);
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("tone map test"),
+            layout: &layout,
+            entries: &[
+                buffer_entry(0, &input),
+                buffer_entry(1, &output),
+                buffer_entry(2, &renderer.frame_buffers.srgb8_levels),
+            ],
+        });
+        let mut encoder = ctx.encoder("tone map test");
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(values.len().div_ceil(64) as u32, 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, bytes);
+        ctx.submit_and_wait(encoder.finish()).unwrap();
+        let on_gpu = ctx.read_buffer(&readback, bytes).unwrap();
+        let off: Vec<(f32, u32, u8)> = on_gpu
+            .chunks_exact(4)
+            .zip(&values)
+            .map(|(level, &v)| (v, bytemuck::pod_read_unaligned(level), linear_to_srgb8(v)))
+            .filter(|&(_, gpu, host)| gpu != u32::from(host))
+            .collect();
+        assert!(off.is_empty(), "(radiance, GPU level, host level): {off:?}");
     }
 
     #[test]

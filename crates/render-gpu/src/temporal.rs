@@ -25,6 +25,7 @@ mod binding {
     pub const GEOMETRY_OUT: u32 = 6;
     pub const HISTORY_SRGB8: u32 = 7;
     pub const SURFACE_MOVES: u32 = 8;
+    pub const SRGB8_LEVELS: u32 = 9;
 }
 
 /// The history's buffers and bookkeeping, while the temporal mode is on.
@@ -39,6 +40,22 @@ struct History {
     bind_groups: Option<[wgpu::BindGroup; 2]>,
     /// The history the next frame reads (the last frame wrote it).
     read: usize,
+    /// The camera frame (for the history's size) of the last frame resolved into the
+    /// history, which a warped refresh reprojects from; None before the first.
+    resolved: Option<CameraFrame>,
+}
+
+/// The last resolved history, as a warped refresh ([`crate::warp`]) reads it.
+pub(crate) struct Resolved<'a> {
+    /// Radiance and age (`vec4<f32>`) per pixel.
+    pub(crate) colour: &'a wgpu::Buffer,
+    /// Two geometry words (`vec4<u32>`) per pixel: the record of the frame pixel each
+    /// history pixel was resolved from.
+    pub(crate) geometry: &'a wgpu::Buffer,
+    /// The camera frame of its frame, for the history's size.
+    pub(crate) camera: CameraFrame,
+    /// The history's size.
+    pub(crate) settings: TemporalSettings,
 }
 
 /// The resolve and history tone-map pipelines, their uniform, the surfaces' motion table and
@@ -98,6 +115,7 @@ impl TemporalPass {
                 layout_entry(GEOMETRY_OUT, write),
                 layout_entry(HISTORY_SRGB8, write),
                 layout_entry(SURFACE_MOVES, read),
+                layout_entry(SRGB8_LEVELS, read),
             ],
         });
         let module = shader_module(device, TEMPORAL_SOURCE)?;
@@ -139,6 +157,7 @@ impl TemporalPass {
                 ],
                 bind_groups: None,
                 read: 0,
+                resolved: None,
             }
         });
     }
@@ -240,6 +259,7 @@ impl TemporalPass {
             1,
         );
         history.read = 1 - history.read;
+        history.resolved = Some(*current);
     }
 
     /// Records the tone map of the last resolved history into the frame buffers' RGBA8
@@ -269,6 +289,18 @@ impl TemporalPass {
     /// The buffer holding the last resolved history (radiance and age per pixel).
     pub(crate) fn output(&self) -> Option<&wgpu::Buffer> {
         self.history.as_ref().map(|h| h.colour[h.read].buffer())
+    }
+
+    /// The last resolved history with its geometry and camera, if a frame was resolved
+    /// since the mode was set (a reset keeps it, as it keeps the frame on display).
+    pub(crate) fn resolved(&self) -> Option<Resolved<'_>> {
+        let history = self.history.as_ref()?;
+        Some(Resolved {
+            colour: history.colour[history.read].buffer(),
+            geometry: history.geometry[history.read].buffer(),
+            camera: history.resolved?,
+            settings: history.clock.settings(),
+        })
     }
 }
 
@@ -303,6 +335,7 @@ fn bind_groups(
                 buffer_entry(GEOMETRY_OUT, geometry[1 - i].buffer()),
                 buffer_entry(HISTORY_SRGB8, frame_buffers.srgb8.buffer()),
                 buffer_entry(SURFACE_MOVES, b.moves.buffer()),
+                buffer_entry(SRGB8_LEVELS, &frame_buffers.srgb8_levels),
             ],
         })
     })

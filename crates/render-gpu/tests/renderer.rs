@@ -67,13 +67,12 @@ fn gpu_tone_map_matches_the_host_tone_map() {
         .filter(|(a, b)| a != b)
         .map(|(&a, &b)| (a, b))
         .collect();
-    eprintln!("tone map: {} of {} bytes differ", off.len(), on_gpu.len());
-    // pow() on the GPU may round differently: one level, rarely.
-    assert!(off.iter().all(|(a, b)| a.abs_diff(*b) <= 1), "{off:?}");
+    // The GPU looks levels up in the host's table: the same bytes, on any GPU.
     assert!(
-        off.len() * 1000 <= on_gpu.len(),
-        "{} bytes differ",
-        off.len()
+        off.is_empty(),
+        "{} of {} bytes differ: {off:?}",
+        off.len(),
+        on_gpu.len()
     );
 }
 

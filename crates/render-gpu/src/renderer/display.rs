@@ -2,13 +2,13 @@
 //! the window chose (so both share one device), and tone-maps each frame into its packed
 //! RGBA8 buffer, which a present pass on the same device reads directly.
 
-use super::{GpuRenderer, LastFrame};
+use super::{GpuRenderer, LastFrame, Shown};
 use crate::device::GpuContext;
 use crate::error::scoped;
 use crate::layout::WORKGROUP_SIZE;
 use steadyray_render::RenderError;
 
-/// The last frame, tone-mapped on the GPU and left there.
+/// The last frame (or a warped refresh of it), tone-mapped on the GPU and left there.
 #[derive(Clone, Copy, Debug)]
 pub struct DisplayImage<'a> {
     /// `width × height` packed RGBA8 texels (`u32`, R in the low byte, A = 255), row-major,
@@ -21,11 +21,14 @@ pub struct DisplayImage<'a> {
 }
 
 impl GpuRenderer {
-    /// Notes that the RGBA8 buffer holds the last frame's tone map (its pass was submitted
-    /// without error): until the next frame, showing or reading it needs no pass.
+    /// Notes that the last frame's tone map was submitted without error (or skipped, a
+    /// warped refresh of it being on display, which stays): until the next frame, showing
+    /// or reading it needs no pass.
     pub(super) fn mark_tone_mapped(&mut self) {
-        if let Some(last) = &mut self.last_frame {
-            last.tone_mapped = true;
+        if let Some(last) = &mut self.last_frame
+            && last.shown == Shown::Nothing
+        {
+            last.shown = Shown::Frame;
         }
     }
 
@@ -47,7 +50,9 @@ impl GpuRenderer {
 
     /// Tone-maps the last frame into its RGBA8 buffer on the GPU and returns that buffer,
     /// without waiting: passes submitted afterwards to [`Self::queue`] read the finished
-    /// image.
+    /// image. After [`steadyray_render::Renderer::present_warped`] the buffer holds the
+    /// warped picture, which is returned as it is until the next frame or
+    /// [`steadyray_render::Renderer::present`].
     pub fn display_image(&mut self) -> Result<DisplayImage<'_>, RenderError> {
         let last = self.last_frame.ok_or(RenderError::NoFrame)?;
         let mut encoder = self.ctx.encoder("tonemap for display");
@@ -67,9 +72,9 @@ impl GpuRenderer {
     }
 
     /// Records the tone-map pass of the last frame (linear image, or the temporal history,
-    /// to packed RGBA8), unless the buffer already holds it.
+    /// to packed RGBA8), unless the buffer already holds its picture or a warp of it.
     pub(super) fn encode_tonemap(&mut self, encoder: &mut wgpu::CommandEncoder, last: LastFrame) {
-        if last.tone_mapped {
+        if last.shown != Shown::Nothing {
             return;
         }
         if last.temporal {

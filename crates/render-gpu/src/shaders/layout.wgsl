@@ -119,6 +119,17 @@ struct TemporalParams {
     spp: f32,
 }
 
+// The warped refresh's settings (GpuWarpParams): the camera frames of the history's frame
+// and of the refresh, both for the history's size (width x height).
+struct WarpParams {
+    history_view: CameraView,
+    refresh_view: CameraView,
+    width: u32,
+    height: u32,
+    pad0: u32,
+    pad1: u32,
+}
+
 // How a surface moved since the previous frame (GpuSurfaceMotion,
 // steadyray_render::surface_motion): kind SURFACE_STILL, SURFACE_MOVED (the point rows p_*
 // and the normal rows n_* map it back) or SURFACE_NEW.

@@ -1,5 +1,6 @@
 // The integrator's bind group (src/pipeline.rs, `binding`): the frame, the scene, the image,
-// the ray counters and, in the temporal mode, the pixels' geometry records.
+// the ray counters, the tone map's levels and, in the temporal mode, the pixels' geometry
+// records.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 // The planes, then the frame's spheres and quads.
@@ -27,3 +28,5 @@
 @group(0) @binding(13) var<storage, read> instances: array<Instance>;
 // The temporal mode's surface ids of the frame's shapes, then of its instances.
 @group(0) @binding(14) var<storage, read> surface_ids: array<u32>;
+// The smallest radiance of each tone-map level 1..=255 (srgb.wgsl).
+@group(0) @binding(15) var<storage, read> srgb8_levels: array<f32>;

@@ -21,10 +21,8 @@
 // How each surface moved since the previous frame, by surface id (read while the world
 // moves).
 @group(0) @binding(8) var<storage, read> surface_moves: array<SurfaceMotion>;
-
-fn dot3(a: vec3<f32>, b: vec3<f32>) -> f32 {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
+// The smallest radiance of each tone-map level 1..=255 (srgb.wgsl).
+@group(0) @binding(9) var<storage, read> srgb8_levels: array<f32>;
 
 fn finite3(c: vec3<f32>) -> bool {
     let exponent = bitcast<vec3<u32>>(c) & vec3<u32>(0x7f800000u);
@@ -112,35 +110,6 @@ fn landed_from(x: u32, anchor: f32, full: u32, low: u32) -> i32 {
         return i32(c) + 1;
     }
     return -1;
-}
-
-// Where camera frame `view` sees point q (q.w = 1) or direction q (q.w = 0), in pixels of
-// the history; z = 0 when behind the camera or on its plane.
-fn project(view: CameraView, q: vec4<f32>) -> vec3<f32> {
-    var v = q.xyz;
-    if q.w != 0.0 {
-        v = q.xyz - view.eye;
-    }
-    let z = dot3(v, view.forward);
-    if !(z > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let sx = dot3(v, view.right) / z;
-    let sy = dot3(v, view.true_up) / z;
-    return vec3<f32>(
-        (sx / view.half_width + 1.0) * 0.5 * f32(params.width),
-        (1.0 - sy / view.half_height) * 0.5 * f32(params.height),
-        1.0,
-    );
-}
-
-fn catmull_rom(f: f32) -> vec4<f32> {
-    return vec4<f32>(
-        f * (-0.5 + f * (1.0 - 0.5 * f)),
-        1.0 + f * f * (-2.5 + 1.5 * f),
-        f * (0.5 + f * (2.0 - 1.5 * f)),
-        f * f * (-0.5 + 0.5 * f),
-    );
 }
 
 // The frame's 3x3 pixels around the covering one (those inside the frame, row by row): the
@@ -234,8 +203,9 @@ fn history_at(x: u32, y: u32, g: Record) -> Kept {
     if !b.existed {
         return none;
     }
-    let before = project(params.previous, b.q);
-    let now = project(params.current, g.q);
+    let size = vec2<u32>(params.width, params.height);
+    let before = project(params.previous, b.q, size);
+    let now = project(params.current, g.q, size);
     if before.z == 0.0 || now.z == 0.0 {
         return none;
     }
