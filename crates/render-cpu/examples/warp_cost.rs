@@ -1,9 +1,9 @@
 //! What a warped refresh costs on the CPU beside the frame's own hand-over: the corridor
-//! sweep at 640×360 in the temporal mode (S = 1, R = 16, scale as given), each frame handed
-//! over (`present`) and then warped to the camera a refresh later (`present_warped`),
-//! medians over the frames.
+//! sweep in the temporal mode (S = 1, R = 16, a history of 640×360 or the width given at
+//! 16:9, frames at the scale given), each frame handed over (`present`) and then warped to
+//! the camera a refresh later (`present_warped`), medians over the frames.
 //!
-//! `cargo run --release -p steadyray-render-cpu --example warp_cost [threads] [scale]`
+//! `cargo run --release -p steadyray-render-cpu --example warp_cost [threads] [scale] [width]`
 
 use std::time::Instant;
 use steadyray_render::{RenderSettings, Renderer, TemporalSettings};
@@ -20,7 +20,8 @@ fn main() {
     let threads = args.next().and_then(|a| a.parse().ok()).unwrap_or(0);
     let scale: f32 = args.next().and_then(|a| a.parse().ok()).unwrap_or(1.0);
     let scene = builtin("corridor").expect("the corridor is built in");
-    let (width, height) = (640, 360);
+    let width: u32 = args.next().and_then(|a| a.parse().ok()).unwrap_or(640);
+    let height = width * 9 / 16;
     let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
     let settings = RenderSettings {
         width: side(width),
@@ -52,7 +53,7 @@ fn main() {
         }
     }
     println!(
-        "{} threads, scale {scale}: frame {:.2} ms, hand-over {:.2} ms, warped refresh {:.2} ms \
+        "{width}x{height}, {} threads, scale {scale}: frame {:.2} ms, hand-over {:.2} ms, warped refresh {:.2} ms \
          (medians)",
         r.threads(),
         median(frame_ms),

@@ -59,10 +59,19 @@ impl History {
                 for (x, pixel) in row.chunks_exact_mut(4).enumerate() {
                     let target = [x as f32 + 0.5, y as f32 + 0.5];
                     let mut at = target;
+                    let mut read = usize::MAX;
                     for _ in 0..WARP_STEPS {
-                        let px = (floor(at[0]).max(0.0) as usize).min(width - 1);
-                        let py = (floor(at[1]).max(0.0) as usize).min(height - 1);
-                        let m = motion[py * width + px];
+                        // The pixel under `at`, clamped to the image: floor(at) is the
+                        // truncation once at is at least 0.
+                        let px = (at[0].max(0.0) as usize).min(width - 1);
+                        let py = (at[1].max(0.0) as usize).min(height - 1);
+                        let pixel = py * width + px;
+                        if pixel == read {
+                            // The same motion again: at stays where it is.
+                            break;
+                        }
+                        read = pixel;
+                        let m = motion[pixel];
                         if m[0].is_nan() {
                             break;
                         }
