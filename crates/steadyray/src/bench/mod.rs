@@ -146,10 +146,12 @@ pub struct BenchArgs {
         default_missing_value = "on"
     )]
     pub temporal: TemporalChoice,
-    /// With --clock real, vsync on and the temporal mode: a refresh that has no new frame
-    /// shows the frame on screen warped to the refresh's camera from its history
-    /// (docs/temporal.md, "Warped refreshes"), made while the next frame renders and counted
-    /// in that frame's Tp. The temporal runs are labelled "+temporal +warp".
+    /// With --clock real, vsync on and the temporal mode: a refresh whose frame rendered the
+    /// world of another time shows it warped to the refresh's camera from its history
+    /// (docs/temporal.md, "Warped refreshes"): a refresh without a new frame (the warp made
+    /// while the next frame renders, in its Tp) and a frame shown a refresh early or late
+    /// (the warp made before its refresh, if it fits). The temporal runs are labelled
+    /// "+temporal +warp".
     #[arg(long)]
     pub warp: bool,
     /// With --clock real: write the screen of every run and the reference at every refresh
