@@ -27,17 +27,21 @@ fn bench(args: &[&str], out: &Path) -> Output {
         .expect("cannot run steadyray")
 }
 
-/// frames.csv's rows of one controller: (tp_ms, hand_over_ms, start_ms, visible_ms).
+/// frames.csv's rows of one controller: (tp_ms + warp_ms, the frame's time on the display;
+/// hand_over_ms, start_ms, visible_ms).
 fn rows(out: &Path, controller: &str) -> Vec<[f64; 4]> {
     let csv = std::fs::read_to_string(out.join("frames.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    let cols = ["tp_ms", "hand_over_ms", "start_ms", "visible_ms"].map(col);
+    let cols = ["tp_ms", "hand_over_ms", "start_ms", "visible_ms", "warp_ms"].map(col);
     lines
         .map(|l| l.split(',').collect::<Vec<_>>())
         .filter(|f| f[0] == controller)
-        .map(|f| cols.map(|c| f[c].parse::<f64>().unwrap()))
+        .map(|f| {
+            let [tp, hand_over, start, visible, warp] = cols.map(|c| f[c].parse::<f64>().unwrap());
+            [tp + warp, hand_over, start, visible]
+        })
         .collect()
 }
 

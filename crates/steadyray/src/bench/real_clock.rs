@@ -35,7 +35,7 @@ pub struct RealSweep {
     /// Whether a refresh whose frame on screen rendered the world of another time shows
     /// that frame warped to the refresh's camera (`bench --warp`, `Renderer::present_warped`):
     /// a refresh without a new frame, whose warp is made while the next frame renders and
-    /// counts in that frame's Tp; and a frame's first refresh when the frame came earlier or
+    /// delays that frame's completion (the controller sees the frame's own Tp); and a frame's first refresh when the frame came earlier or
     /// later than predicted, whose warp is made between the frame's completion and its
     /// refresh, when it fits there.
     pub warp: bool,
@@ -301,7 +301,7 @@ pub fn run_controller_real(
             index: slot.index,
             t_s: slot.world_s(),
         };
-        let mut m = source
+        let m = source
             .frame(at, q)
             .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
         let handed = source.hand_over()?;
@@ -324,15 +324,15 @@ pub fn run_controller_real(
                 warps.pictures.insert(w.refresh, picture);
             }
         }
-        // The warps made while the frame rendered are part of its time.
-        m.report.tp_ms += warp_ms;
         let tp_ms = m.report.tp_ms;
-        rendering_ms += tp_ms + handed.ms;
+        rendering_ms += tp_ms + warp_ms + handed.ms;
         if let Err(e) = controller.observe(&m.report) {
             log::warn!("{name}: frame {}: report refused: {e}", slot.index);
         }
+        // The controller sees the frame's own time; the warps made meanwhile, on the same
+        // machine, delay its completion on the display.
         let times = clock
-            .present(tp_ms, handed.ms)
+            .present(tp_ms + warp_ms, handed.ms)
             .with_context(|| format!("{name}: frame {}", slot.index))?;
         if sweep.warp {
             warp_first_showing(source, &slot, &times, period, end, keep, &mut warps)
@@ -353,6 +353,7 @@ pub fn run_controller_real(
         }
         rows.push(FrameRow {
             target_ms,
+            warp_ms,
             display: Some(times),
             ..FrameRow::measured(slot.index as u32, slot.world_s(), &m, sweep.band)
         });
@@ -518,8 +519,9 @@ mod tests {
     }
 
     /// With warps, every refresh that shows no new frame (the warm-up frame's at the start,
-    /// each frame's after its first) shows a warp, and each frame's Tp is its render time
-    /// plus the warps made while it rendered: those of the refreshes before it completed. A
+    /// each frame's after its first) shows a warp, and each frame's time on the display is
+    /// its render time plus the warps made while it rendered (those of the refreshes before
+    /// it completed), while the controller sees its render time. A
     /// frame shown at another refresh than it rendered the world of is warped there when
     /// the warp fits before that refresh, and missed when it does not.
     #[test]
@@ -598,7 +600,15 @@ mod tests {
                 f.tp_ms,
                 rendered[j]
             );
-            assert!((run.rows[j].tp_ms - f.tp_ms).abs() < 1e-9, "frame {j}");
+            assert_eq!(
+                run.rows[j].tp_ms, rendered[j],
+                "the controller's Tp, frame {j}"
+            );
+            assert_eq!(
+                run.rows[j].warp_ms,
+                SIM_WARP_MS * made_meanwhile as f64,
+                "frame {j}"
+            );
         }
         let warp_times: BTreeSet<i64> = source.warps.iter().map(|&t| time_key(t)).collect();
         assert!(

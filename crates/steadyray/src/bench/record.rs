@@ -24,6 +24,9 @@ pub struct FrameRow {
     pub scale: f32,
     /// Tp, the render time, ms.
     pub tp_ms: f64,
+    /// The warps of refreshes without a new frame made while the frame rendered (`bench
+    /// --warp`), ms: the display model's time for the frame is `tp_ms + warp_ms`.
+    pub warp_ms: f64,
     /// Host wall time of the render call, ms.
     pub wall_ms: f64,
     /// The part of Tp spent placing moving objects and updating the top-level BVH, ms.
@@ -55,6 +58,7 @@ impl FrameRow {
             depth: q.depth,
             scale: q.scale,
             tp_ms: m.report.tp_ms,
+            warp_ms: 0.0,
             wall_ms: m.wall_ms,
             accel_ms: m.accel_ms,
             rays: m.report.total_rays(),
@@ -99,14 +103,16 @@ pub fn safe_name(name: &str) -> String {
 /// Writes `frames.csv`: one row per frame and controller. The display columns (`start_ms`,
 /// `hand_over_ms`, `visible_ms`: the frame's way to the screen, ms of display time) are empty
 /// under the frame clock; `speed_mean` and `speed_p95` are the frame's motion on screen (deg/s),
-/// `target_ms` the frame time `perceptual` aimed it at (empty for other controllers).
+/// `target_ms` the frame time `perceptual` aimed it at (empty for other controllers),
+/// `warp_ms` the warps made while the frame rendered (`--warp`; the display's time for the
+/// frame is `tp_ms + warp_ms`).
 pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
     let mut out = std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
     );
     writeln!(
         out,
-        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms,speed_mean,speed_p95,target_ms"
+        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms,speed_mean,speed_p95,target_ms,warp_ms"
     )?;
     for run in runs {
         for r in &run.rows {
@@ -121,7 +127,7 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
             );
             writeln!(
                 out,
-                "{},{},{:.6},{},{},{},{:.4},{:.4},{:.4},{},{},{},{:.6},{},{:.3},{:.3},{}",
+                "{},{},{:.6},{},{},{},{:.4},{:.4},{:.4},{},{},{},{:.6},{},{:.3},{:.3},{},{:.4}",
                 run.name,
                 r.frame,
                 r.angle,
@@ -139,6 +145,7 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
                 r.speed_mean,
                 r.speed_p95,
                 r.target_ms.map_or_else(String::new, |t| format!("{t:.4}")),
+                r.warp_ms,
             )?;
         }
     }
