@@ -306,7 +306,8 @@ pub fn run_controller_real(
             .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
         let handed = source.hand_over()?;
         let used = warps_used(&ahead, slot.start_ms, m.report.tp_ms + handed.ms);
-        let warp_ms: f64 = ahead[..used].iter().map(|w| w.ms).sum();
+        // Summed from +0 (a float sum of nothing is −0, which frames.csv would print).
+        let warp_ms = ahead[..used].iter().fold(0.0, |sum, w| sum + w.ms);
         if used == ahead.len() && !ahead.is_empty() {
             let complete = slot.start_ms + m.report.tp_ms + handed.ms + warp_ms;
             let last = ahead[used - 1].refresh;
