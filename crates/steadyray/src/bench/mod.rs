@@ -149,8 +149,8 @@ pub struct BenchArgs {
     /// With --clock real, vsync on and the temporal mode: a refresh whose frame rendered the
     /// world of another time shows it warped to the refresh's camera from its history
     /// (docs/temporal.md, "Warped refreshes"): a refresh without a new frame (the warp made
-    /// while the next frame renders, in its Tp) and a frame shown a refresh early or late
-    /// (the warp made before its refresh, if it fits). The temporal runs are labelled
+    /// while the next frame renders, delaying it, but never past its refresh) and a frame
+    /// shown a refresh early or late (the warp made before its refresh, if it fits). The temporal runs are labelled
     /// "+temporal +warp".
     #[arg(long)]
     pub warp: bool,

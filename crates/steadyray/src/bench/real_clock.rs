@@ -35,7 +35,8 @@ pub struct RealSweep {
     /// Whether a refresh whose frame on screen rendered the world of another time shows
     /// that frame warped to the refresh's camera (`bench --warp`, `Renderer::present_warped`):
     /// a refresh without a new frame, whose warp is made while the next frame renders and
-    /// delays that frame's completion (the controller sees the frame's own Tp); and a frame's first refresh when the frame came earlier or
+    /// delays that frame's completion, never past the refresh it makes without warps (the
+    /// controller sees the frame's own Tp); and a frame's first refresh when the frame came earlier or
     /// later than predicted, whose warp is made between the frame's completion and its
     /// refresh, when it fits there.
     pub warp: bool,
@@ -124,9 +125,9 @@ pub struct Warps {
     pub pictures: BTreeMap<usize, Rgb8Image>,
     /// What each warp shown cost, ms.
     pub ms: Vec<f64>,
-    /// Refreshes shown unwarped that should have been warped: without a new frame beyond
-    /// the [`WARPS_AHEAD`] made for them, or a frame's first showing whose warp did not fit
-    /// before its refresh.
+    /// Refreshes shown unwarped that should have been warped: without a new frame, beyond
+    /// the [`WARPS_AHEAD`] made for them or whose warp would have cost the next frame its
+    /// refresh, or a frame's first showing whose warp did not fit before its refresh.
     pub missed: usize,
 }
 
@@ -185,22 +186,38 @@ fn warps_ahead(
         .collect()
 }
 
-/// How many of the warps `ahead` a frame starting at `start_ms` and busy for `busy_ms`
-/// (render and hand-over) uses: those of the refreshes before it completes, its warps
-/// included. Each warp used delays it, which may leave one more refresh without it.
-fn warps_used(ahead: &[Ahead], start_ms: f64, busy_ms: f64) -> usize {
-    let mut used = 0;
-    loop {
-        let complete = start_ms + busy_ms + ahead[..used].iter().map(|w| w.ms).sum::<f64>();
-        let held = ahead
-            .iter()
-            .take_while(|w| w.time_ms < complete - TIME_EPS_MS)
-            .count();
-        if held == used {
-            return used;
-        }
-        used = held;
-    }
+/// What a frame starting at `start_ms` and busy for `busy_ms` (render and hand-over) does
+/// with the warps `ahead` (made for the refreshes from the first one it may leave without a
+/// new frame): how many it uses, and how many refreshes it leaves without a new frame
+/// (those before it completes, up to the run's end `end_ms`). The warps are made in the
+/// order of their refreshes, each delaying the frame, and only as many as still let it
+/// make the refresh it makes without them: a warp never costs a frame a refresh, so warps
+/// slower than a refresh do not cascade into ever later frames.
+fn warps_used(
+    ahead: &[Ahead],
+    start_ms: f64,
+    busy_ms: f64,
+    period_ms: f64,
+    end_ms: f64,
+) -> (usize, usize) {
+    let Some(first) = ahead.first() else {
+        return (0, 0);
+    };
+    let complete = start_ms + busy_ms;
+    let held = (first.refresh..)
+        .map(|i| i as f64 * period_ms)
+        .take_while(|&t| t < complete - TIME_EPS_MS && t < end_ms - TIME_EPS_MS)
+        .count();
+    let shown_ms = refresh_at_or_after(complete, period_ms) as f64 * period_ms;
+    let mut busy = complete;
+    let used = ahead[..held.min(ahead.len())]
+        .iter()
+        .take_while(|w| {
+            busy += w.ms;
+            busy <= shown_ms + TIME_EPS_MS
+        })
+        .count();
+    (used, held)
 }
 
 /// A frame shown at another refresh than the one it rendered the world of (its render or
@@ -305,19 +322,16 @@ pub fn run_controller_real(
             .frame(at, q)
             .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
         let handed = source.hand_over()?;
-        let used = warps_used(&ahead, slot.start_ms, m.report.tp_ms + handed.ms);
+        let (used, held) = warps_used(
+            &ahead,
+            slot.start_ms,
+            m.report.tp_ms + handed.ms,
+            period,
+            end,
+        );
+        warps.missed += held - used;
         // Summed from +0 (a float sum of nothing is −0, which frames.csv would print).
         let warp_ms = ahead[..used].iter().fold(0.0, |sum, w| sum + w.ms);
-        if used == ahead.len() && !ahead.is_empty() {
-            let complete = slot.start_ms + m.report.tp_ms + handed.ms + warp_ms;
-            let last = ahead[used - 1].refresh;
-            warps.missed += (last + 1..)
-                .take_while(|&i| {
-                    let t = i as f64 * period;
-                    t < complete - TIME_EPS_MS && t < end - TIME_EPS_MS
-                })
-                .count();
-        }
         for w in ahead.into_iter().take(used) {
             warps.shown.insert(w.refresh);
             warps.ms.push(w.ms);
@@ -617,6 +631,35 @@ mod tests {
                 .all(|&i| warp_times.contains(&time_key(i as f64 * period / 1000.0))),
             "each warp shows its refresh's time"
         );
+    }
+
+    /// Warps made ahead of a frame from refresh 1 (P = 10 ms) at `ms` each.
+    fn ahead(ms: f64) -> Vec<Ahead> {
+        (1..=WARPS_AHEAD)
+            .map(|refresh| Ahead {
+                refresh,
+                time_ms: refresh as f64 * 10.0,
+                ms,
+                picture: None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_warp_never_costs_a_frame_its_refresh() {
+        // A frame from 0 busy for 25 ms leaves refreshes 1 and 2 (10, 20 ms) without a new
+        // frame and makes refresh 3 (30 ms).
+        assert_eq!(warps_used(&ahead(2.0), 0.0, 25.0, 10.0, 1e9), (2, 2));
+        // Two 4 ms warps would complete it at 33 ms: only the first is made.
+        assert_eq!(warps_used(&ahead(4.0), 0.0, 25.0, 10.0, 1e9), (1, 2));
+        // A warp slower than a refresh is never made: it would cascade.
+        assert_eq!(warps_used(&ahead(12.0), 0.0, 25.0, 10.0, 1e9), (0, 2));
+        // A frame done before refresh 1 leaves none; one of 75 ms leaves 7, 4 of them made.
+        assert_eq!(warps_used(&ahead(1.0), 0.0, 8.0, 10.0, 1e9), (0, 0));
+        assert_eq!(warps_used(&ahead(1.0), 0.0, 75.0, 10.0, 1e9), (4, 7));
+        // Refreshes from the run's end on do not count.
+        assert_eq!(warps_used(&ahead(1.0), 0.0, 75.0, 10.0, 25.0), (2, 2));
+        assert_eq!(warps_used(&[], 0.0, 75.0, 10.0, 1e9), (0, 0));
     }
 
     #[test]
