@@ -156,7 +156,6 @@ impl Warps {
 /// A warp made ahead of the next frame: the frame on screen warped to refresh `refresh`.
 struct Ahead {
     refresh: usize,
-    time_ms: f64,
     ms: f64,
     picture: Option<Rgb8Image>,
 }
@@ -178,7 +177,6 @@ fn warps_ahead(
                 .with_context(|| format!("warp to refresh {refresh}"))?;
             Ok(Ahead {
                 refresh,
-                time_ms,
                 ms: handed.ms,
                 picture: handed.image,
             })
@@ -638,7 +636,6 @@ mod tests {
         (1..=WARPS_AHEAD)
             .map(|refresh| Ahead {
                 refresh,
-                time_ms: refresh as f64 * 10.0,
                 ms,
                 picture: None,
             })
