@@ -1,7 +1,7 @@
 //! `bench --clock real`: each controller runs for a span of display time on the display model
 //! (`steadyray_display`), rendering each frame's world at its predicted display time. Display
-//! time advances by the measured Tp and hand-over cost alone, so whatever the bench does
-//! between frames (reading pictures back, keeping them) changes no figure.
+//! time advances by the measured Tp, hand-over and (`--warp`) warp costs alone, so whatever
+//! the bench does between frames (reading pictures back, keeping them) changes no figure.
 
 use super::displayed::DisplayedQuality;
 use super::record::{ControllerRun, FrameRow};
@@ -36,9 +36,9 @@ pub struct RealSweep {
     /// that frame warped to the refresh's camera (`bench --warp`, `Renderer::present_warped`):
     /// a refresh without a new frame, whose warp is made while the next frame renders and
     /// delays that frame's completion, never past the refresh it makes without warps (the
-    /// controller sees the frame's own Tp); and a frame's first refresh when the frame came earlier or
-    /// later than predicted, whose warp is made between the frame's completion and its
-    /// refresh, when it fits there.
+    /// controller sees the frame's own Tp); and a frame's first refresh when the frame came
+    /// earlier or later than predicted, whose warp is made between the frame's completion
+    /// and its refresh, when it fits there.
     pub warp: bool,
 }
 
