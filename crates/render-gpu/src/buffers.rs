@@ -2,7 +2,7 @@
 
 use crate::layout::COUNTER_SLOTS;
 use crate::timing::TIMESTAMP_BYTES;
-use crate::tonemap::level_thresholds;
+use steadyray_render::tonemap::srgb8_thresholds;
 use wgpu::util::DeviceExt;
 
 /// The smallest buffer allocated: one element of any GPU struct of [`crate::layout`].
@@ -86,7 +86,8 @@ pub(crate) struct FrameBuffers {
     pub(crate) image: GrowBuffer,
     /// Packed RGBA8 per pixel, written by the tone-map pass.
     pub(crate) srgb8: GrowBuffer,
-    /// The smallest radiance of each tone-map level 1..=255 ([`level_thresholds`]), which
+    /// The smallest radiance of each tone-map level 1..=255 ([`srgb8_thresholds`], the
+    /// host's own: a device's `pow` may round unlike the host's `powf`), which
     /// the tone-map passes look levels up in.
     pub(crate) srgb8_levels: wgpu::Buffer,
     /// `counter_stride` u32 counters per workgroup.
@@ -109,7 +110,7 @@ impl FrameBuffers {
             srgb8: GrowBuffer::new(device, "srgb8 image", U::STORAGE | U::COPY_SRC, 0),
             srgb8_levels: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("srgb8 levels"),
-                contents: bytemuck::cast_slice(&level_thresholds()),
+                contents: bytemuck::cast_slice(srgb8_thresholds()),
                 usage: U::STORAGE,
             }),
             group_counts: GrowBuffer::new(

@@ -19,7 +19,6 @@ mod scene_buffers;
 mod surface;
 mod temporal;
 mod timing;
-mod tonemap;
 mod warp;
 
 pub use adapter::{AdapterSummary, DeviceKind, GpuOptions, list_adapters};

@@ -705,7 +705,7 @@ pub(crate) mod tests {
         let Some(renderer) = test_renderer() else {
             return;
         };
-        let mut values: Vec<f32> = crate::tonemap::level_thresholds()
+        let mut values: Vec<f32> = steadyray_render::tonemap::srgb8_thresholds()
             .iter()
             .flat_map(|t| [f32::from_bits(t.to_bits() - 1), *t])
             .collect();

@@ -29,6 +29,14 @@ pub fn linear_to_srgb8_fast(c: f32) -> u8 {
     level
 }
 
+/// The smallest radiance of each level 1..=255 of [`linear_to_srgb8`] (entry k for level
+/// k + 1): the tone map does not decrease with radiance, so a radiance's level is the number
+/// of entries at or below it. The fast tone map and the GPU's (which looks levels up here
+/// rather than trust a device's `pow` to round as the host's does) read this table.
+pub fn srgb8_thresholds() -> &'static [f32; 255] {
+    &Srgb8Table::get().threshold
+}
+
 /// Buckets of the fast tone map's table.
 const BUCKETS: usize = 4096;
 
@@ -81,6 +89,25 @@ pub fn srgb8_to_linear(v: u8) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each entry is its level's edge: it takes the level, and the radiance just below it
+    /// the level before.
+    #[test]
+    fn thresholds_are_the_levels_edges() {
+        let table = srgb8_thresholds();
+        for (k, &t) in table.iter().enumerate() {
+            let level = k as u8 + 1;
+            assert_eq!(linear_to_srgb8(t), level, "entry {k}: {t:e}");
+            let below = f32::from_bits(t.to_bits() - 1);
+            assert_eq!(
+                linear_to_srgb8(below),
+                level - 1,
+                "below entry {k}: {below:e}"
+            );
+        }
+        assert!(table.is_sorted());
+        assert!(table[254] <= 1.0);
+    }
 
     #[test]
     fn round_trips_every_level() {

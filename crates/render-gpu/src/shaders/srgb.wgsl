@@ -1,7 +1,7 @@
 // Mirrors steadyray_render::tonemap::linear_to_srgb8 to the bit, for display without a host
 // round trip; shared by the renderer's tone map (tonemap.wgsl), the temporal history's
 // (temporal.wgsl) and the warped refresh's (warp.wgsl). Each of their modules binds
-// `srgb8_levels`, the smallest radiance of each level 1..=255 (src/tonemap.rs): the level is
+// `srgb8_levels`, the smallest radiance of each level 1..=255 (steadyray_render::tonemap::srgb8_thresholds): the level is
 // looked up there rather than computed with a pow() that may round unlike the host's.
 
 fn linear_to_srgb8(value: f32) -> u32 {
