@@ -40,14 +40,16 @@ use world::World;
 
 /// The CPU renderer: a prepared scene, its own rayon thread pool, the image of the last
 /// frame (reused across frames of the same size), the samples plain frames draw and, in the
-/// temporal mode, the history and the warped picture on display, if any.
+/// temporal mode, the history and the camera of the warp on display, if any.
 pub struct CpuRenderer {
     pool: rayon::ThreadPool,
     world: Option<World>,
     image: Option<Image>,
     stream: SampleStream,
     history: Option<History>,
-    warped: Option<Picture>,
+    /// The camera of the last warped refresh while it is on display: its picture is made
+    /// again when read, rather than copied on every warp.
+    warped: Option<Camera>,
 }
 
 impl Default for CpuRenderer {
@@ -139,6 +141,19 @@ impl CpuRenderer {
                     .map(|hit| (hit.t, world.object_of(hit.prim) as usize))
             })
             .collect())
+    }
+
+    /// The history's picture as `camera` sees it ([`Renderer::present_warped`]).
+    fn warp(&self, camera: &Camera) -> Result<Picture, RenderError> {
+        let history = self.history.as_ref().ok_or_else(|| {
+            RenderError::Unavailable(
+                "a warped refresh needs the temporal mode (its history and geometry)".into(),
+            )
+        })?;
+        let size = history.clock.settings();
+        self.pool
+            .install(|| history.warped(&camera.frame(size.width, size.height)))
+            .ok_or(RenderError::NoFrame)
     }
 }
 
@@ -268,8 +283,8 @@ impl Renderer for CpuRenderer {
     }
 
     fn read_picture(&mut self) -> Result<Picture, RenderError> {
-        if let Some(warped) = &self.warped {
-            return Ok(warped.clone());
+        if let Some(camera) = self.warped {
+            return self.warp(&camera);
         }
         let pool = &self.pool;
         match &self.history {
@@ -285,17 +300,8 @@ impl Renderer for CpuRenderer {
     }
 
     fn present_warped(&mut self, camera: &Camera) -> Result<Presented, RenderError> {
-        let history = self.history.as_ref().ok_or_else(|| {
-            RenderError::Unavailable(
-                "a warped refresh needs the temporal mode (its history and geometry)".into(),
-            )
-        })?;
-        let size = history.clock.settings();
-        let picture = self
-            .pool
-            .install(|| history.warped(&camera.frame(size.width, size.height)))
-            .ok_or(RenderError::NoFrame)?;
-        self.warped = Some(picture.clone());
+        let picture = self.warp(camera)?;
+        self.warped = Some(*camera);
         Ok(Presented::Host(picture))
     }
 
