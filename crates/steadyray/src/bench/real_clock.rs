@@ -143,6 +143,15 @@ pub struct WarpFigures {
 }
 
 impl Warps {
+    /// Records a warp shown at refresh `refresh` that cost `ms`, with its picture if kept.
+    fn record(&mut self, refresh: usize, ms: f64, picture: Option<Rgb8Image>) {
+        self.shown.insert(refresh);
+        self.ms.push(ms);
+        if let Some(picture) = picture {
+            self.pictures.insert(refresh, picture);
+        }
+    }
+
     /// The figures of a run that warped.
     pub fn figures(&self) -> WarpFigures {
         WarpFigures {
@@ -161,19 +170,21 @@ struct Ahead {
 }
 
 /// The warps of the frame on screen to the refreshes from `first` (at most
-/// [`WARPS_AHEAD`], before the run's end `end_ms`), each at its refresh's world time.
+/// [`WARPS_AHEAD`], before the run's end `end_ms`), each at its refresh's world time, with
+/// the pictures `keep` asks for.
 fn warps_ahead(
     source: &mut dyn FrameSource,
     first: usize,
     period_ms: f64,
     end_ms: f64,
+    keep: Keep,
 ) -> Result<Vec<Ahead>> {
     (first..first + WARPS_AHEAD)
         .map(|refresh| (refresh, refresh as f64 * period_ms))
         .take_while(|&(_, time_ms)| time_ms < end_ms - TIME_EPS_MS)
         .map(|(refresh, time_ms)| {
             let handed = source
-                .warp(time_ms / 1000.0)
+                .warp(time_ms / 1000.0, keep.wants(refresh))
                 .with_context(|| format!("warp to refresh {refresh}"))?;
             Ok(Ahead {
                 refresh,
@@ -237,16 +248,12 @@ fn warp_first_showing(
     }
     let refresh = refresh_at_or_after(shown_ms, period_ms) as usize;
     let handed = source
-        .warp(shown_ms / 1000.0)
+        .warp(shown_ms / 1000.0, keep.wants(refresh))
         .with_context(|| format!("warp to refresh {refresh}"))?;
     if times.complete_ms() + handed.ms > shown_ms + TIME_EPS_MS {
         warps.missed += 1;
-        return Ok(());
-    }
-    warps.shown.insert(refresh);
-    warps.ms.push(handed.ms);
-    if let Some(picture) = handed.image.filter(|_| keep.wants(refresh)) {
-        warps.pictures.insert(refresh, picture);
+    } else {
+        warps.record(refresh, handed.ms, handed.image);
     }
     Ok(())
 }
@@ -307,7 +314,7 @@ pub fn run_controller_real(
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
         let ahead = if sweep.warp {
-            warps_ahead(source, first_held(&screen, period), period, end)
+            warps_ahead(source, first_held(&screen, period), period, end, keep)
                 .with_context(|| format!("{name}: before frame {}", slot.index))?
         } else {
             Vec::new()
@@ -331,11 +338,7 @@ pub fn run_controller_real(
         // Summed from +0 (a float sum of nothing is −0, which frames.csv would print).
         let warp_ms = ahead[..used].iter().fold(0.0, |sum, w| sum + w.ms);
         for w in ahead.into_iter().take(used) {
-            warps.shown.insert(w.refresh);
-            warps.ms.push(w.ms);
-            if let Some(picture) = w.picture.filter(|_| keep.wants(w.refresh)) {
-                warps.pictures.insert(w.refresh, picture);
-            }
+            warps.record(w.refresh, w.ms, w.picture);
         }
         let tp_ms = m.report.tp_ms;
         rendering_ms += tp_ms + warp_ms + handed.ms;
@@ -399,13 +402,9 @@ pub fn run_controller_real(
         let last = refresh_at_or_after(end, period) as usize;
         for refresh in first..last {
             let handed = source
-                .warp(refresh as f64 * period / 1000.0)
+                .warp(refresh as f64 * period / 1000.0, keep.wants(refresh))
                 .with_context(|| format!("{name}: warp to refresh {refresh}"))?;
-            warps.shown.insert(refresh);
-            warps.ms.push(handed.ms);
-            if let Some(picture) = handed.image.filter(|_| keep.wants(refresh)) {
-                warps.pictures.insert(refresh, picture);
-            }
+            warps.record(refresh, handed.ms, handed.image);
         }
     }
     if keep.any_in(screen.visible_ms, f64::INFINITY, period, end)
@@ -481,9 +480,9 @@ mod tests {
         fn hand_over(&mut self) -> Result<HandOver> {
             self.inner.hand_over()
         }
-        fn warp(&mut self, t_s: f64) -> Result<HandOver> {
+        fn warp(&mut self, t_s: f64, picture: bool) -> Result<HandOver> {
             self.warps.push(t_s);
-            self.inner.warp(t_s)
+            self.inner.warp(t_s, picture)
         }
         fn takes_wall_time(&self) -> bool {
             self.inner.takes_wall_time()

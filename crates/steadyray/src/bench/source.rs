@@ -62,9 +62,9 @@ pub trait FrameSource {
     fn hand_over(&mut self) -> Result<HandOver>;
     /// Hands the last frame to the display again as the camera at path time `t_s` sees it,
     /// for a refresh that has no new frame (`Renderer::present_warped`), and measures what
-    /// that costs, with its picture read back outside that time; the simulated renderer
-    /// takes [`SIM_WARP_MS`].
-    fn warp(&mut self, t_s: f64) -> Result<HandOver>;
+    /// that costs, with its picture (when `picture`) read back outside that time; the
+    /// simulated renderer takes [`SIM_WARP_MS`].
+    fn warp(&mut self, t_s: f64, picture: bool) -> Result<HandOver>;
     /// Whether a frame's Tp and hand-over are wall time spent in these calls (a renderer),
     /// not a simulated time: only then is their share of a run's wall time a measurement.
     fn takes_wall_time(&self) -> bool;
@@ -169,9 +169,9 @@ impl FrameSource for RendererSource {
         })
     }
 
-    fn warp(&mut self, t_s: f64) -> Result<HandOver> {
+    fn warp(&mut self, t_s: f64, picture: bool) -> Result<HandOver> {
         let camera = self.scene.camera_at_time(t_s);
-        warp_measured(self.renderer.as_mut(), &camera)
+        warp_measured(self.renderer.as_mut(), &camera, picture)
     }
 
     fn takes_wall_time(&self) -> bool {
@@ -196,20 +196,23 @@ impl FrameSource for RendererSource {
 }
 
 /// `renderer`'s last frame handed to the display again as `camera` sees it
-/// (`Renderer::present_warped`): what that cost, ms, and the picture, read back outside that
-/// time when it stayed on the device.
-pub fn warp_measured(renderer: &mut dyn Renderer, camera: &Camera) -> Result<HandOver> {
+/// (`Renderer::present_warped`): what that cost, ms, and, when `picture`, the picture, read
+/// back outside that time when it stayed on the device (a warp whose picture no score or
+/// video keeps is not read back).
+pub fn warp_measured(
+    renderer: &mut dyn Renderer,
+    camera: &Camera,
+    picture: bool,
+) -> Result<HandOver> {
     let start = Instant::now();
     let presented = renderer.present_warped(camera)?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
-    let picture = match presented {
-        Presented::Host(picture) => rgb8(picture)?,
-        Presented::Device => read_picture(renderer)?,
+    let image = match (picture, presented) {
+        (false, _) => None,
+        (true, Presented::Host(picture)) => Some(rgb8(picture)?),
+        (true, Presented::Device) => Some(read_picture(renderer)?),
     };
-    Ok(HandOver {
-        ms,
-        image: Some(picture),
-    })
+    Ok(HandOver { ms, image })
 }
 
 /// The last frame's picture as `renderer`'s display shows it (`Renderer::read_picture`), as
@@ -329,7 +332,7 @@ impl FrameSource for SimulatedSource {
         })
     }
 
-    fn warp(&mut self, _t_s: f64) -> Result<HandOver> {
+    fn warp(&mut self, _t_s: f64, _picture: bool) -> Result<HandOver> {
         Ok(HandOver {
             ms: SIM_WARP_MS,
             image: None,

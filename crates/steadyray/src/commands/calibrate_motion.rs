@@ -220,9 +220,9 @@ impl FrameSource for StimulusSource<'_> {
         })
     }
 
-    fn warp(&mut self, t_s: f64) -> Result<HandOver> {
+    fn warp(&mut self, t_s: f64, picture: bool) -> Result<HandOver> {
         let camera = self.turn.camera(t_s);
-        warp_measured(&mut *self.renderer, &camera)
+        warp_measured(&mut *self.renderer, &camera, picture)
     }
 
     fn takes_wall_time(&self) -> bool {
