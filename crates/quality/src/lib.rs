@@ -27,7 +27,7 @@ pub mod image;
 pub mod psnr;
 pub mod ssim;
 
-pub use flip::{FlipMap, flip, flip_at};
+pub use flip::{FlipMap, PIXELS_PER_DEGREE, flip, flip_at};
 pub use image::{Rgb8Image, SizeMismatch};
 pub use psnr::psnr;
 pub use ssim::ssim;

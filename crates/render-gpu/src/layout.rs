@@ -294,7 +294,8 @@ pub struct GpuWarpParams {
     pub refresh_view: GpuCameraView,
     pub width: u32,
     pub height: u32,
-    pub pad0: u32,
+    /// 1 when the history's frame resampled it, so the warp is sharpened for display.
+    pub sharpen: u32,
     pub pad1: u32,
 }
 
@@ -610,7 +611,7 @@ mod tests {
                     refresh_view,
                     width,
                     height,
-                    pad0,
+                    sharpen,
                     pad1,
                 }),
             ),

@@ -30,6 +30,7 @@ pub(crate) const TEMPORAL_SOURCE: &str = concat!(
     include_str!("shaders/sampling.wgsl"),
     include_str!("shaders/srgb.wgsl"),
     include_str!("shaders/reprojection.wgsl"),
+    include_str!("shaders/sharpen.wgsl"),
     include_str!("shaders/temporal.wgsl"),
 );
 
@@ -39,6 +40,7 @@ pub(crate) const WARP_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
     include_str!("shaders/srgb.wgsl"),
     include_str!("shaders/reprojection.wgsl"),
+    include_str!("shaders/sharpen.wgsl"),
     include_str!("shaders/warp.wgsl"),
 );
 

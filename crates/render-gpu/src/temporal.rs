@@ -43,6 +43,8 @@ struct History {
     /// The camera frame (for the history's size) of the last frame resolved into the
     /// history, which a warped refresh reprojects from; None before the first.
     resolved: Option<CameraFrame>,
+    /// Whether that frame resampled the history (it is then sharpened for display).
+    sharpen: bool,
 }
 
 /// The last resolved history, as a warped refresh ([`crate::warp`]) reads it.
@@ -52,6 +54,9 @@ pub(crate) struct Resolved<'a> {
     /// Two geometry words (`vec4<u32>`) per pixel: the record of the frame pixel each
     /// history pixel was resolved from.
     pub(crate) geometry: &'a wgpu::Buffer,
+    /// Whether its frame resampled it (it had a history and was not still), so that it is
+    /// sharpened for display.
+    pub(crate) sharpen: bool,
     /// The camera frame of its frame, for the history's size.
     pub(crate) camera: CameraFrame,
     /// The history's size.
@@ -158,6 +163,7 @@ impl TemporalPass {
                 bind_groups: None,
                 read: 0,
                 resolved: None,
+                sharpen: false,
             }
         });
     }
@@ -260,6 +266,7 @@ impl TemporalPass {
         );
         history.read = 1 - history.read;
         history.resolved = Some(*current);
+        history.sharpen = frame.previous.is_some() && !frame.still;
     }
 
     /// Records the tone map of the last resolved history into the frame buffers' RGBA8
@@ -298,6 +305,7 @@ impl TemporalPass {
         Some(Resolved {
             colour: history.colour[history.read].buffer(),
             geometry: history.geometry[history.read].buffer(),
+            sharpen: history.sharpen,
             camera: history.resolved?,
             settings: history.clock.settings(),
         })

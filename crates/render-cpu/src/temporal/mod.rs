@@ -7,12 +7,28 @@ mod warp;
 
 pub(crate) use geometry::{Geometry, GeometrySink};
 
+use glam::Vec4;
 use rayon::prelude::*;
 use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
 use steadyray_render::surface_motion::SurfaceMove;
-use steadyray_render::temporal::{HistoryClock, TemporalFrame};
+use steadyray_render::temporal::{HistoryClock, TemporalFrame, neighbourhood, sharpened};
 use steadyray_render::{Image, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
+
+/// Pixel `i` of the `size` image `colour` (radiance and age per pixel) as the display shows
+/// it: sharpened ([`sharpened`]) when `sharpen`, else as it is.
+#[inline]
+fn displayed(colour: &[[f32; 4]], size: (u32, u32), sharpen: bool, i: usize) -> [f32; 3] {
+    let c = if sharpen {
+        let (x, y) = ((i % size.0 as usize) as u32, (i / size.0 as usize) as u32);
+        sharpened(&neighbourhood(x, y, size.0, size.1, |k| {
+            Vec4::from_array(colour[k])
+        }))
+    } else {
+        Vec4::from_array(colour[i])
+    };
+    [c.x, c.y, c.z]
+}
 
 /// A renderer's temporal state: the history (radiance and age per pixel, and the geometry
 /// it was made of), the frame being accumulated, and the clock that says which frame of
@@ -41,6 +57,9 @@ pub(crate) struct History {
     accumulated: bool,
     /// The camera frame of the last frame accumulated (for the history's size).
     camera: Option<CameraFrame>,
+    /// Whether the last frame resampled the history (it reprojected one and was not
+    /// still): its picture is then sharpened for display ([`displayed`]).
+    sharpen: bool,
 }
 
 impl History {
@@ -64,6 +83,7 @@ impl History {
             next_sources: vec![0; pixels],
             accumulated: false,
             camera: None,
+            sharpen: false,
         }
     }
 
@@ -129,20 +149,21 @@ impl History {
         std::mem::swap(&mut self.previous_geometry, &mut self.low_geometry);
         self.accumulated = true;
         self.camera = Some(camera);
+        self.sharpen = frame.previous.is_some() && !frame.still;
     }
 
-    /// What `picture` makes of the accumulated image (its size and each pixel's colour by
-    /// index), if a frame was accumulated.
+    /// What `picture` makes of the accumulated image as the display shows it (its size and
+    /// each pixel's colour by index, [`displayed`]), if a frame was accumulated.
     pub fn picture<T>(
         &self,
         picture: impl FnOnce(u32, u32, &(dyn Fn(usize) -> [f32; 3] + Sync)) -> T,
     ) -> Option<T> {
         let settings = self.clock.settings();
-        let colour = &self.colour;
+        let (width, height) = (settings.width, settings.height);
+        let (colour, sharpen) = (&self.colour, self.sharpen);
         self.accumulated.then(|| {
-            picture(settings.width, settings.height, &|i: usize| {
-                let [r, g, b, _] = colour[i];
-                [r, g, b]
+            picture(width, height, &|i: usize| {
+                displayed(colour, (width, height), sharpen, i)
             })
         })
     }

@@ -2,9 +2,10 @@
 //! since its frame, for a refresh that has no new frame. Each history pixel's record says
 //! where its surface appears from the new camera; each screen pixel then looks for the
 //! history pixel that lands on it (a few fixed-point steps on that motion field) and takes
-//! the history's Catmull–Rom filter there, clamped to the four nearest pixels' range.
+//! the history's Catmull–Rom filter there, clamped to the four nearest pixels' range, and
+//! the result is shown as the history is (sharpened when its frame resampled it).
 
-use super::History;
+use super::{History, displayed};
 use glam::Vec4;
 use rayon::prelude::*;
 use steadyray_render::Picture;
@@ -52,11 +53,12 @@ impl History {
                     }
                 }
             });
-        let mut rgba = vec![255u8; 4 * width * height];
-        rgba.par_chunks_mut(4 * width)
+        let mut warped = vec![[0.0f32; 4]; width * height];
+        warped
+            .par_chunks_mut(width)
             .enumerate()
             .for_each(|(y, row)| {
-                for (x, pixel) in row.chunks_exact_mut(4).enumerate() {
+                for (x, pixel) in row.iter_mut().enumerate() {
                     let target = [x as f32 + 0.5, y as f32 + 0.5];
                     let mut at = target;
                     let mut read = usize::MAX;
@@ -77,7 +79,17 @@ impl History {
                         }
                         at = [target[0] - m[0], target[1] - m[1]];
                     }
-                    let colour = self.filtered_at(at, (width, height));
+                    let [r, g, b] = self.filtered_at(at, (width, height));
+                    *pixel = [r, g, b, 0.0];
+                }
+            });
+        // Shown as the history itself is: sharpened when its frame resampled it.
+        let mut rgba = vec![255u8; 4 * width * height];
+        rgba.par_chunks_mut(4 * width)
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, pixel) in row.chunks_exact_mut(4).enumerate() {
+                    let colour = displayed(&warped, size, self.sharpen, y * width + x);
                     for (channel, c) in pixel.iter_mut().zip(colour) {
                         *channel = linear_to_srgb8_fast(c);
                     }

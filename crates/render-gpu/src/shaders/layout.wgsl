@@ -126,7 +126,8 @@ struct WarpParams {
     refresh_view: CameraView,
     width: u32,
     height: u32,
-    pad0: u32,
+    // Whether the history's frame resampled it: the warp is then sharpened for display.
+    sharpen: u32,
     pad1: u32,
 }
 

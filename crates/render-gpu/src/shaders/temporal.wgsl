@@ -345,5 +345,15 @@ fn tonemap_history(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let i = gid.y * params.width + gid.x;
-    history_srgb8[i] = pack_srgb8(history_out[i].xyz);
+    var c = history_out[i];
+    // A frame that resampled the history (it had one and was not still) is sharpened for
+    // display (sharpen.wgsl).
+    if params.has_history != 0u && params.still == 0u {
+        var n: array<vec4<f32>, 9>;
+        for (var k = 0u; k < 9u; k++) {
+            n[k] = history_out[neighbour_index(gid.x, gid.y, k, params.width, params.height)];
+        }
+        c = sharpened(n);
+    }
+    history_srgb8[i] = pack_srgb8(c.xyz);
 }

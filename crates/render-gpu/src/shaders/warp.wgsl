@@ -4,8 +4,9 @@
 // pixel, where its record's surface moves on screen between the history's camera and the
 // new one; `warp_colour` then looks, from each screen pixel, for the history pixel that
 // lands on it (WARP_STEPS fixed-point steps on that motion field), takes the history's
-// Catmull-Rom filter there, clamped to the four nearest pixels' range, and tone-maps it for
-// display (srgb.wgsl). The history is only read.
+// Catmull-Rom filter there, clamped to the four nearest pixels' range; `warp_display` then
+// shows it as the history is shown (sharpened when its frame resampled it, and tone-mapped,
+// srgb.wgsl). The history is only read.
 
 @group(0) @binding(0) var<uniform> warp: WarpParams;
 // The last history (width x height): radiance and age, and its geometry records
@@ -18,6 +19,8 @@
 @group(0) @binding(4) var<storage, read_write> warp_srgb8: array<u32>;
 // The smallest radiance of each tone-map level 1..=255 (srgb.wgsl).
 @group(0) @binding(5) var<storage, read> srgb8_levels: array<f32>;
+// The warped picture in linear radiance, before it is shown as the history is.
+@group(0) @binding(6) var<storage, read_write> warp_linear: array<vec4<f32>>;
 
 // Fixed-point steps from a screen pixel to the history pixel that lands on it.
 const WARP_STEPS: u32 = 3u;
@@ -49,16 +52,6 @@ fn pixel_of(t: f32, size: u32) -> u32 {
 fn tap(f: f32, k: i32, last: u32) -> u32 {
     let i = i32(clamp(f, -2.0, f32(last) + 2.0));
     return u32(clamp(i + k - 1, 0, i32(last)));
-}
-
-// The CPU's Vec4::min and Vec4::max (SSE's minps and maxps): the second operand unless the
-// first is strictly smaller (larger), so that NaN and signed zeros come out alike.
-fn cpu_min(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {
-    return select(b, a, a < b);
-}
-
-fn cpu_max(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {
-    return select(b, a, a > b);
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
@@ -127,5 +120,24 @@ fn warp_colour(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
         at = centre - m;
     }
-    warp_srgb8[gid.y * warp.width + gid.x] = pack_srgb8(filtered_at(at));
+    warp_linear[gid.y * warp.width + gid.x] = vec4<f32>(filtered_at(at), 0.0);
+}
+
+// The warped picture shown as the history is: sharpened (sharpen.wgsl) when the history's
+// frame resampled it, then tone-mapped.
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE, 1)
+fn warp_display(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= warp.width || gid.y >= warp.height {
+        return;
+    }
+    let i = gid.y * warp.width + gid.x;
+    var c = warp_linear[i];
+    if warp.sharpen != 0u {
+        var n: array<vec4<f32>, 9>;
+        for (var k = 0u; k < 9u; k++) {
+            n[k] = warp_linear[neighbour_index(gid.x, gid.y, k, warp.width, warp.height)];
+        }
+        c = sharpened(n);
+    }
+    warp_srgb8[i] = pack_srgb8(c.xyz);
 }

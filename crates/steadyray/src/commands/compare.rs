@@ -1,11 +1,11 @@
 //! `steadyray compare REF.png TEST.png [--error-map map.png]`: FLIP, PSNR and SSIM of a test
 //! image against a reference, as one JSON line.
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use serde_json::json;
 use std::path::{Path, PathBuf};
-use steadyray_quality::{Rgb8Image, compare, flip};
+use steadyray_quality::{PIXELS_PER_DEGREE, Rgb8Image, flip_at, psnr, ssim};
 
 #[derive(Debug, Args)]
 pub struct CompareArgs {
@@ -21,6 +21,11 @@ pub struct CompareArgs {
     /// side, in that order, to this PNG.
     #[arg(long, value_name = "PNG")]
     pub side_by_side: Option<PathBuf>,
+    /// FLIP's viewing condition: pixels of the reference per degree of visual angle as
+    /// shown (the bench's displayed FLIP uses the standard FHD set-up's, 12.6 for a
+    /// 640-pixel-wide frame filling the display).
+    #[arg(long, value_name = "PIXELS", default_value_t = PIXELS_PER_DEGREE)]
+    pub ppd: f32,
 }
 
 /// `images` (all of the same height) next to each other, left to right, 4 white pixels apart.
@@ -66,13 +71,19 @@ pub fn save_rgb8(image: &Rgb8Image, path: &Path) -> Result<()> {
 
 /// Compares the two images and prints `{"flip":..,"psnr":..,"ssim":..,...}`.
 pub fn run(args: &CompareArgs) -> Result<()> {
+    if !(args.ppd.is_finite() && args.ppd > 0.0) {
+        bail!(
+            "--ppd must be a positive number of pixels per degree, not {}",
+            args.ppd
+        );
+    }
     let reference = load_rgb8(&args.reference)?;
     let test = load_rgb8(&args.test)?;
     let upscaled = (test.width(), test.height()) != (reference.width(), reference.height());
     let test = test.resize_bilinear(reference.width(), reference.height());
-    let m = compare(&reference, &test)?;
+    let flip_map = flip_at(&reference, &test, args.ppd)?;
     if args.error_map.is_some() || args.side_by_side.is_some() {
-        let map = flip(&reference, &test)?.to_magma();
+        let map = flip_map.to_magma();
         if let Some(path) = &args.error_map {
             save_rgb8(&map, path)?;
         }
@@ -81,16 +92,17 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         }
     }
     // JSON has no infinity: identical images report a PSNR of null.
-    let psnr = m.psnr.is_finite().then_some(m.psnr);
+    let psnr = Some(psnr(&reference, &test)?).filter(|p| p.is_finite());
     let line = json!({
         "reference": args.reference.display().to_string(),
         "test": args.test.display().to_string(),
         "width": reference.width(),
         "height": reference.height(),
         "upscaled": upscaled,
-        "flip": m.flip,
+        "flip": flip_map.mean(),
+        "ppd": args.ppd,
         "psnr": psnr,
-        "ssim": m.ssim,
+        "ssim": ssim(&reference, &test)?,
     });
     println!("{line}");
     Ok(())
