@@ -8,7 +8,7 @@ mod common;
 use common::*;
 use glam::Vec4;
 use steadyray_quality::{Rgb8Image, flip, flip_at};
-use steadyray_render::temporal::{neighbourhood, sharpened};
+use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, neighbourhood, sharpened};
 use steadyray_render::{
     Image, RenderError, RenderSettings, Renderer, SampleStream, SettingsError, TemporalSettings,
 };
@@ -175,6 +175,8 @@ fn a_resampled_history_is_sharpened_for_display() {
     }
     let history = r.read_image().unwrap();
     let (w, h) = (history.width, history.height);
+    // Frames of one sample a pixel at full scale (`sharpen_strength`).
+    let sharpen_strength_of_s1 = SHARPEN * (1.0 - 1.0 / HISTORY_CAP);
     let sharp = Image {
         width: w,
         height: h,
@@ -184,7 +186,7 @@ fn a_resampled_history_is_sharpened_for_display() {
                     let [r, g, b] = history.pixels[k];
                     Vec4::new(r, g, b, 0.0)
                 });
-                let c = sharpened(&n);
+                let c = sharpened(&n, sharpen_strength_of_s1);
                 [c.x, c.y, c.z]
             })
             .collect(),

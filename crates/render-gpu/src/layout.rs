@@ -283,6 +283,12 @@ pub struct GpuTemporalParams {
     pub surface_count: u32,
     /// The frame's eye rays per pixel S (a frame pixel's sample count weighs its value).
     pub spp: f32,
+    /// How strongly the history is sharpened for display
+    /// (`steadyray_render::temporal::sharpen_strength`; 0: not at all).
+    pub sharpen: f32,
+    pub pad0: u32,
+    pub pad1: u32,
+    pub pad2: u32,
 }
 
 /// The warped refresh's uniform (WGSL `WarpParams`, `shaders/warp.wgsl`): the camera frame of
@@ -294,8 +300,9 @@ pub struct GpuWarpParams {
     pub refresh_view: GpuCameraView,
     pub width: u32,
     pub height: u32,
-    /// 1 when the history's frame resampled it, so the warp is sharpened for display.
-    pub sharpen: u32,
+    /// How strongly the history's frame has it sharpened for display, and so the warp
+    /// (`steadyray_render::temporal::sharpen_strength`; 0: not at all).
+    pub sharpen: f32,
     pub pad1: u32,
 }
 
@@ -602,6 +609,10 @@ mod tests {
                     world_moved,
                     surface_count,
                     spp,
+                    sharpen,
+                    pad0,
+                    pad1,
+                    pad2,
                 }),
             ),
             (

@@ -10,7 +10,7 @@ use crate::pipeline::{
 };
 use crate::timing::GpuTimer;
 use steadyray_render::surface_motion::SurfaceMove;
-use steadyray_render::temporal::{HistoryClock, TemporalFrame};
+use steadyray_render::temporal::{HistoryClock, TemporalFrame, sharpen_strength};
 use steadyray_render::{RenderError, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
 
@@ -43,8 +43,8 @@ struct History {
     /// The camera frame (for the history's size) of the last frame resolved into the
     /// history, which a warped refresh reprojects from; None before the first.
     resolved: Option<CameraFrame>,
-    /// Whether that frame resampled the history (it is then sharpened for display).
-    sharpen: bool,
+    /// How strongly that frame has the history sharpened for display (0: not at all).
+    sharpen: f32,
 }
 
 /// The last resolved history, as a warped refresh ([`crate::warp`]) reads it.
@@ -54,9 +54,8 @@ pub(crate) struct Resolved<'a> {
     /// Two geometry words (`vec4<u32>`) per pixel: the record of the frame pixel each
     /// history pixel was resolved from.
     pub(crate) geometry: &'a wgpu::Buffer,
-    /// Whether its frame resampled it (it had a history and was not still), so that it is
-    /// sharpened for display.
-    pub(crate) sharpen: bool,
+    /// How strongly its frame has it sharpened for display (0: not at all).
+    pub(crate) sharpen: f32,
     /// The camera frame of its frame, for the history's size.
     pub(crate) camera: CameraFrame,
     /// The history's size.
@@ -100,6 +99,8 @@ fn params(
         world_moved: u32::from(frame.world_moved),
         surface_count: surfaces,
         spp: frame.spp,
+        sharpen: sharpen_strength(frame, low, (settings.width, settings.height)),
+        ..Default::default()
     }
 }
 
@@ -163,7 +164,7 @@ impl TemporalPass {
                 bind_groups: None,
                 read: 0,
                 resolved: None,
-                sharpen: false,
+                sharpen: 0.0,
             }
         });
     }
@@ -266,7 +267,7 @@ impl TemporalPass {
         );
         history.read = 1 - history.read;
         history.resolved = Some(*current);
-        history.sharpen = frame.previous.is_some() && !frame.still;
+        history.sharpen = uniform.sharpen;
     }
 
     /// Records the tone map of the last resolved history into the frame buffers' RGBA8

@@ -97,7 +97,7 @@ impl WarpPass {
             refresh_view: view.into(),
             width,
             height,
-            sharpen: u32::from(history.sharpen),
+            sharpen: history.sharpen,
             ..Default::default()
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&uniform));

@@ -42,13 +42,13 @@ pub const APPROX_FLAG: u32 = 0x8000_0000;
 /// Tag bit of a geometry record seen through a mirror (its point is a mirror image, which
 /// does not follow its object's motion).
 pub const MIRROR_FLAG: u32 = 0x4000_0000;
-/// The strength of the display's sharpening of a history that was resampled
-/// ([`sharpened`]): the picture is c + SHARPEN · (c − the mean of c's four edge neighbours),
-/// clamped to its 3×3 range. Every moving frame resamples the history (Catmull–Rom), and
-/// the blur that gathers is what FLIP at the viewing distance holds against it; on the
-/// corridor's sweep at 640x360 a strength of 0.5 lowered the shown picture's FLIP at 12.6
-/// pixels a degree by 8–9 % and at 67 by 3 %, and raised ColorVideoVDP's JOD (a plain frame,
-/// which is not blurred, only gets worse, so only a resampled history is sharpened).
+/// The most strength of the display's sharpening of a resampled history ([`sharpened`],
+/// [`sharpen_strength`]): the picture is c + k · (c − the mean of c's four edge neighbours),
+/// clamped to its 3×3 range, with k up to SHARPEN. Every moving frame resamples the history
+/// (Catmull–Rom), and the blur that gathers is what FLIP at the viewing distance holds
+/// against it; on the corridor's sweep at 640x360 and S = 1 a strength of 0.5 lowered the
+/// shown picture's FLIP at 12.6 pixels a degree by 8–9 % and at 67 by 3 %, and raised
+/// ColorVideoVDP's JOD. A plain frame, which is not blurred, only gets worse.
 pub const SHARPEN: f32 = 0.5;
 /// The branch random numbers of frame k of a history use sample indices
 /// `i + SAMPLE_STRIDE · (k mod 2^20)`, so that every frame chooses new dielectric branches
@@ -246,16 +246,33 @@ pub fn project4(frame: &CameraFrame, q: [Vec4; 4], size: (u32, u32)) -> (Vec4, V
     )
 }
 
+/// How strongly the display sharpens the history after `frame`, rendered at `low` pixels
+/// into a `full` history: SHARPEN · max(1 − d / HISTORY_CAP, 0), d = S · (low pixels / full
+/// pixels) the samples a history pixel receives per frame; 0 when the frame did not resample
+/// the history (the first after a reset, or a still one). The more samples each frame
+/// brings, the less of each pixel is resampled history and the less it is blurred: at
+/// 640x360 on the corridor's sweep a strength of 0.5 helped at S = 1, hurt at 67 pixels a
+/// degree at S = 4 (FLIP +17 %, where 0.25 was level) and hurt everywhere at S = 16 (+40 to
+/// +65 %), so the strength falls to 0 where a frame alone carries the history's cap.
+pub fn sharpen_strength(frame: &TemporalFrame, low: (u32, u32), full: (u32, u32)) -> f32 {
+    if frame.previous.is_none() || frame.still {
+        return 0.0;
+    }
+    let share = (low.0 as f32 * low.1 as f32) / (full.0 as f32 * full.1 as f32);
+    SHARPEN * (1.0 - frame.spp * share / HISTORY_CAP).max(0.0)
+}
+
 /// The displayed colour of a history pixel whose 3×3 neighbourhood (rows top to bottom,
 /// each left to right, `n[4]` the pixel; taps past the image's edges repeat the edge) is
-/// `n`, when the history was resampled: c + SHARPEN · (c − ((up + down) + (left + right)) ·
-/// ¼), clamped to the neighbourhood's per-channel range (lanes alike; the fourth, the age,
-/// is carried along and dropped by the caller). The clamp keeps edges from ringing.
+/// `n`, sharpened at strength `k` ([`sharpen_strength`]): c + k · (c − ((up + down) +
+/// (left + right)) · ¼), clamped to the neighbourhood's per-channel range (lanes alike; the
+/// fourth, the age, is carried along and dropped by the caller). The clamp keeps edges
+/// from ringing.
 #[inline]
-pub fn sharpened(n: &[Vec4; 9]) -> Vec4 {
+pub fn sharpened(n: &[Vec4; 9], k: f32) -> Vec4 {
     let c = n[4];
     let cross = ((n[1] + n[7]) + (n[3] + n[5])) * 0.25;
-    let s = c + SHARPEN * (c - cross);
+    let s = c + k * (c - cross);
     let (mut lo, mut hi) = (n[0], n[0]);
     for &v in &n[1..] {
         lo = lo.min(v);
@@ -473,7 +490,7 @@ mod tests {
     #[test]
     fn sharpening_leaves_flat_colour_and_stays_in_the_neighbourhoods_range() {
         let flat = [Vec4::splat(0.3); 9];
-        assert_eq!(sharpened(&flat), Vec4::splat(0.3));
+        assert_eq!(sharpened(&flat, SHARPEN), Vec4::splat(0.3));
         // A soft step: the pixel between dark and light is pushed toward the light side,
         // but never past the neighbourhood's brightest.
         let mut step = [Vec4::splat(0.2); 9];
@@ -481,17 +498,44 @@ mod tests {
             step[k] = Vec4::splat(1.0);
         }
         step[4] = Vec4::splat(0.6);
-        let s = sharpened(&step);
+        let s = sharpened(&step, SHARPEN);
         // cross = (0.2 + 0.2 + 0.2 + 1.0) / 4 = 0.4; 0.6 + 0.5 · 0.2 = 0.7.
         assert!((s.x - 0.7).abs() < 1e-6, "{s}");
         step[4] = Vec4::splat(0.95);
         // 0.95 + 0.5 · (0.95 − 0.4875) ≈ 1.18, clamped to 1.
-        assert_eq!(sharpened(&step).x, 1.0);
+        assert_eq!(sharpened(&step, SHARPEN).x, 1.0);
         // The edges repeat: at a corner of a 2 × 2 image the taps are its pixels.
         let image = [1.0f32, 2.0, 3.0, 4.0];
         let n = neighbourhood(0, 0, 2, 2, |i| Vec4::splat(image[i]));
         let taps: Vec<f32> = n.iter().map(|v| v.x).collect();
         assert_eq!(taps, [1.0, 1.0, 2.0, 1.0, 1.0, 2.0, 3.0, 3.0, 4.0]);
+    }
+
+    #[test]
+    fn sharpening_falls_as_a_frame_brings_more_samples_and_stops_when_nothing_was_resampled() {
+        let view = |x: f32| Camera::look_at(Vec3::new(x, 1.0, 3.0), Vec3::ZERO, Vec3::Y, 50.0);
+        let mut clock = HistoryClock::new(TemporalSettings {
+            width: 64,
+            height: 32,
+        });
+        let first = clock.advance(view(0.0).frame(64, 32), 0.0, false, 1.0);
+        let full = (64, 32);
+        assert_eq!(sharpen_strength(&first, full, full), 0.0);
+        let moving = clock.advance(view(0.1).frame(64, 32), 0.0, false, 1.0);
+        assert_eq!(
+            sharpen_strength(&moving, full, full),
+            SHARPEN * (1.0 - 1.0 / 8.0)
+        );
+        // At half scale a history pixel receives a quarter of a sample a frame.
+        assert_eq!(
+            sharpen_strength(&moving, (32, 16), full),
+            SHARPEN * (1.0 - 0.25 / 8.0)
+        );
+        let many = TemporalFrame { spp: 8.0, ..moving };
+        assert_eq!(sharpen_strength(&many, full, full), 0.0);
+        let still = clock.advance(view(0.1).frame(64, 32), 0.0, false, 1.0);
+        assert!(still.still);
+        assert_eq!(sharpen_strength(&still, full, full), 0.0);
     }
 
     #[test]

@@ -90,12 +90,12 @@ fn flip_is_scored_at_the_viewing_condition_asked() {
     let same = compare(&reference, &reference, &["--ppd", "12.6"]);
     assert_eq!(flip(&same), 0.0);
     for bad in ["0", "-3", "nan"] {
+        let ppd = format!("--ppd={bad}");
         let out = run(&[
             "compare",
             reference.to_str().unwrap(),
             test.to_str().unwrap(),
-            "--ppd",
-            bad,
+            &ppd,
         ]);
         assert!(!out.status.success(), "--ppd {bad} was accepted");
         let err = String::from_utf8_lossy(&out.stderr);

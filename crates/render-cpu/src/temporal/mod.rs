@@ -11,19 +11,20 @@ use glam::Vec4;
 use rayon::prelude::*;
 use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
 use steadyray_render::surface_motion::SurfaceMove;
-use steadyray_render::temporal::{HistoryClock, TemporalFrame, neighbourhood, sharpened};
+use steadyray_render::temporal::{
+    HistoryClock, TemporalFrame, neighbourhood, sharpen_strength, sharpened,
+};
 use steadyray_render::{Image, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
 
 /// Pixel `i` of the `size` image `colour` (radiance and age per pixel) as the display shows
-/// it: sharpened ([`sharpened`]) when `sharpen`, else as it is.
+/// it: sharpened at strength `sharpen` ([`sharpened`]) when that is above 0, else as it is.
 #[inline]
-fn displayed(colour: &[[f32; 4]], size: (u32, u32), sharpen: bool, i: usize) -> [f32; 3] {
-    let c = if sharpen {
+fn displayed(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32, i: usize) -> [f32; 3] {
+    let c = if sharpen > 0.0 {
         let (x, y) = ((i % size.0 as usize) as u32, (i / size.0 as usize) as u32);
-        sharpened(&neighbourhood(x, y, size.0, size.1, |k| {
-            Vec4::from_array(colour[k])
-        }))
+        let n = neighbourhood(x, y, size.0, size.1, |k| Vec4::from_array(colour[k]));
+        sharpened(&n, sharpen)
     } else {
         Vec4::from_array(colour[i])
     };
@@ -57,9 +58,9 @@ pub(crate) struct History {
     accumulated: bool,
     /// The camera frame of the last frame accumulated (for the history's size).
     camera: Option<CameraFrame>,
-    /// Whether the last frame resampled the history (it reprojected one and was not
-    /// still): its picture is then sharpened for display ([`displayed`]).
-    sharpen: bool,
+    /// How strongly the last frame's history is sharpened for display ([`displayed`],
+    /// `sharpen_strength`: 0 when it did not resample the history).
+    sharpen: f32,
 }
 
 impl History {
@@ -83,7 +84,7 @@ impl History {
             next_sources: vec![0; pixels],
             accumulated: false,
             camera: None,
-            sharpen: false,
+            sharpen: 0.0,
         }
     }
 
@@ -149,7 +150,7 @@ impl History {
         std::mem::swap(&mut self.previous_geometry, &mut self.low_geometry);
         self.accumulated = true;
         self.camera = Some(camera);
-        self.sharpen = frame.previous.is_some() && !frame.still;
+        self.sharpen = sharpen_strength(&frame, low_size, size);
     }
 
     /// What `picture` makes of the accumulated image as the display shows it (its size and

@@ -117,6 +117,11 @@ struct TemporalParams {
     world_moved: u32,
     surface_count: u32,
     spp: f32,
+    // How strongly the history is sharpened for display (sharpen.wgsl; 0: not at all).
+    sharpen: f32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // The warped refresh's settings (GpuWarpParams): the camera frames of the history's frame
@@ -126,8 +131,8 @@ struct WarpParams {
     refresh_view: CameraView,
     width: u32,
     height: u32,
-    // Whether the history's frame resampled it: the warp is then sharpened for display.
-    sharpen: u32,
+    // How strongly the history's frame has it sharpened for display, and so the warp.
+    sharpen: f32,
     pad1: u32,
 }
 

@@ -1,10 +1,9 @@
 // The display's sharpening of a resampled history, steadyray_render::temporal::sharpened to
-// the bit (docs/temporal.md, "Sharpening for display"): c + SHARPEN * (c - the mean of its
-// four edge neighbours), clamped to its 3x3 range. Shared by the history's tone map
+// the bit (docs/temporal.md, "Sharpening for display"): c + k * (c - the mean of its four
+// edge neighbours), clamped to its 3x3 range, at the strength k the host chose
+// (steadyray_render::temporal::sharpen_strength). Shared by the history's tone map
 // (temporal.wgsl) and the warped refresh's (warp.wgsl), each gathering the nine taps from
 // its own buffer.
-
-const SHARPEN: f32 = 0.5;
 
 // The CPU's Vec4::min and Vec4::max (SSE's minps and maxps): the second operand unless the
 // first is strictly smaller (larger), so that NaN and signed zeros come out alike.
@@ -26,11 +25,11 @@ fn neighbour_index(x: u32, y: u32, k: u32, width: u32, height: u32) -> u32 {
     return row * width + column;
 }
 
-// The sharpened colour of the pixel whose neighbourhood is n (n[4] the pixel).
-fn sharpened(n: array<vec4<f32>, 9>) -> vec4<f32> {
+// The colour of the pixel whose neighbourhood is n (n[4] the pixel), sharpened at strength k.
+fn sharpened(n: array<vec4<f32>, 9>, k: f32) -> vec4<f32> {
     let c = n[4];
     let cross = ((n[1] + n[7]) + (n[3] + n[5])) * 0.25;
-    let s = c + SHARPEN * (c - cross);
+    let s = c + k * (c - cross);
     var lo = n[0];
     var hi = n[0];
     for (var k = 1; k < 9; k++) {

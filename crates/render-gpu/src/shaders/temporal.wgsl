@@ -346,14 +346,14 @@ fn tonemap_history(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let i = gid.y * params.width + gid.x;
     var c = history_out[i];
-    // A frame that resampled the history (it had one and was not still) is sharpened for
-    // display (sharpen.wgsl).
-    if params.has_history != 0u && params.still == 0u {
+    // A frame that resampled the history is sharpened for display (sharpen.wgsl), as
+    // strongly as the host says.
+    if params.sharpen > 0.0 {
         var n: array<vec4<f32>, 9>;
         for (var k = 0u; k < 9u; k++) {
             n[k] = history_out[neighbour_index(gid.x, gid.y, k, params.width, params.height)];
         }
-        c = sharpened(n);
+        c = sharpened(n, params.sharpen);
     }
     history_srgb8[i] = pack_srgb8(c.xyz);
 }

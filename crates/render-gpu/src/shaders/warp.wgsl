@@ -132,12 +132,12 @@ fn warp_display(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let i = gid.y * warp.width + gid.x;
     var c = warp_linear[i];
-    if warp.sharpen != 0u {
+    if warp.sharpen > 0.0 {
         var n: array<vec4<f32>, 9>;
         for (var k = 0u; k < 9u; k++) {
             n[k] = warp_linear[neighbour_index(gid.x, gid.y, k, warp.width, warp.height)];
         }
-        c = sharpened(n);
+        c = sharpened(n, warp.sharpen);
     }
     warp_srgb8[i] = pack_srgb8(c.xyz);
 }
