@@ -17,16 +17,16 @@ use steadyray_render::temporal::{
 use steadyray_render::{Image, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
 
-/// Pixel `i` of the `size` image `colour` (radiance and age per pixel) as the display shows
-/// it: sharpened at strength `sharpen` ([`sharpened`]) when that is above 0, else as it is.
+/// Pixel (x, y) of the `size` image `colour` (radiance and age per pixel) as the display
+/// shows it: sharpened at strength `sharpen` ([`sharpened`]) when that is above 0, else as
+/// it is.
 #[inline]
-fn displayed(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32, i: usize) -> [f32; 3] {
+fn displayed(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32, x: u32, y: u32) -> [f32; 3] {
     let c = if sharpen > 0.0 {
-        let (x, y) = ((i % size.0 as usize) as u32, (i / size.0 as usize) as u32);
         let n = neighbourhood(x, y, size.0, size.1, |k| Vec4::from_array(colour[k]));
         sharpened(&n, sharpen)
     } else {
-        Vec4::from_array(colour[i])
+        Vec4::from_array(colour[(y * size.0 + x) as usize])
     };
     [c.x, c.y, c.z]
 }
@@ -154,17 +154,17 @@ impl History {
     }
 
     /// What `picture` makes of the accumulated image as the display shows it (its size and
-    /// each pixel's colour by index, [`displayed`]), if a frame was accumulated.
+    /// each pixel's colour by its column and row, [`displayed`]), if a frame was accumulated.
     pub fn picture<T>(
         &self,
-        picture: impl FnOnce(u32, u32, &(dyn Fn(usize) -> [f32; 3] + Sync)) -> T,
+        picture: impl FnOnce(u32, u32, &(dyn Fn(u32, u32) -> [f32; 3] + Sync)) -> T,
     ) -> Option<T> {
         let settings = self.clock.settings();
         let (width, height) = (settings.width, settings.height);
         let (colour, sharpen) = (&self.colour, self.sharpen);
         self.accumulated.then(|| {
-            picture(width, height, &|i: usize| {
-                displayed(colour, (width, height), sharpen, i)
+            picture(width, height, &|x, y| {
+                displayed(colour, (width, height), sharpen, x, y)
             })
         })
     }

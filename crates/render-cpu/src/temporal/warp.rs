@@ -89,7 +89,7 @@ impl History {
             .enumerate()
             .for_each(|(y, row)| {
                 for (x, pixel) in row.chunks_exact_mut(4).enumerate() {
-                    let colour = displayed(&warped, size, self.sharpen, y * width + x);
+                    let colour = displayed(&warped, size, self.sharpen, x as u32, y as u32);
                     for (channel, c) in pixel.iter_mut().zip(colour) {
                         *channel = linear_to_srgb8_fast(c);
                     }
