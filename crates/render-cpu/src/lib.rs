@@ -157,16 +157,16 @@ impl CpuRenderer {
     }
 }
 
-/// The picture of a `width` × `height` image whose pixel (x, y) is `rgb(x, y)`, tone-mapped
-/// as [`Image::to_srgb8_rgba`] does, a row at a time on the current rayon pool.
-fn tone_mapped(width: u32, height: u32, rgb: impl Fn(u32, u32) -> [f32; 3] + Sync) -> Picture {
+/// The picture of a `width` × `height` image whose pixel i is `rgb(i)`, tone-mapped as
+/// [`Image::to_srgb8_rgba`] does, a row at a time on the current rayon pool.
+fn tone_mapped(width: u32, height: u32, rgb: impl Fn(usize) -> [f32; 3] + Sync) -> Picture {
     let row = width as usize;
     let mut rgba = vec![255u8; 4 * row * height as usize];
     rgba.par_chunks_mut(4 * row)
         .enumerate()
         .for_each(|(y, out)| {
             for (x, pixel) in out.chunks_exact_mut(4).enumerate() {
-                for (channel, c) in pixel.iter_mut().zip(rgb(x as u32, y as u32)) {
+                for (channel, c) in pixel.iter_mut().zip(rgb(y * row + x)) {
                     *channel = linear_to_srgb8_fast(c);
                 }
             }
@@ -288,17 +288,13 @@ impl Renderer for CpuRenderer {
         }
         let pool = &self.pool;
         match &self.history {
-            Some(history) => history
-                .picture(|width, height, rgb| pool.install(|| tone_mapped(width, height, rgb)))
+            Some(history) => pool
+                .install(|| history.picture())
                 .ok_or(RenderError::NoFrame),
             None => {
                 let image = self.image.as_ref().ok_or(RenderError::NoFrame)?;
                 let pixels = &image.pixels;
-                Ok(pool.install(|| {
-                    tone_mapped(image.width, image.height, |x, y| {
-                        pixels[(y * image.width + x) as usize]
-                    })
-                }))
+                Ok(pool.install(|| tone_mapped(image.width, image.height, |i| pixels[i])))
             }
         }
     }

@@ -11,24 +11,56 @@ use glam::Vec4;
 use rayon::prelude::*;
 use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
 use steadyray_render::surface_motion::SurfaceMove;
-use steadyray_render::temporal::{
-    HistoryClock, TemporalFrame, neighbourhood, sharpen_strength, sharpened,
-};
-use steadyray_render::{Image, TemporalSettings};
+use steadyray_render::temporal::{HistoryClock, TemporalFrame, sharpen_strength, sharpened};
+use steadyray_render::tonemap::linear_to_srgb8_fast;
+use steadyray_render::{Image, Picture, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
 
-/// Pixel (x, y) of the `size` image `colour` (radiance and age per pixel) as the display
-/// shows it: sharpened at strength `sharpen` ([`sharpened`]) when that is above 0, else as
-/// it is.
-#[inline]
-fn displayed(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32, x: u32, y: u32) -> [f32; 3] {
-    let c = if sharpen > 0.0 {
-        let n = neighbourhood(x, y, size.0, size.1, |k| Vec4::from_array(colour[k]));
-        sharpened(&n, sharpen)
-    } else {
-        Vec4::from_array(colour[(y * size.0 + x) as usize])
-    };
-    [c.x, c.y, c.z]
+/// The picture of the `size` image `colour` (radiance and age per pixel) as the display
+/// shows it: each pixel sharpened at strength `sharpen` ([`sharpened`], its 3×3
+/// neighbourhood as `neighbourhood` gathers it, read here from the three rows around it)
+/// when that is above 0, then tone-mapped; a row at a time on the current rayon pool.
+fn shown(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32) -> Picture {
+    let (width, height) = (size.0 as usize, size.1 as usize);
+    let row = |y: usize| &colour[y * width..(y + 1) * width];
+    let mut rgba = vec![255u8; 4 * width * height];
+    rgba.par_chunks_mut(4 * width)
+        .enumerate()
+        .for_each(|(y, out)| {
+            let (above, here, below) = (
+                row(y.saturating_sub(1)),
+                row(y),
+                row((y + 1).min(height - 1)),
+            );
+            for (x, pixel) in out.chunks_exact_mut(4).enumerate() {
+                let c = if sharpen > 0.0 {
+                    let (left, right) = (x.saturating_sub(1), (x + 1).min(width - 1));
+                    let tap = |r: &[[f32; 4]], i: usize| Vec4::from_array(r[i]);
+                    let n = [
+                        tap(above, left),
+                        tap(above, x),
+                        tap(above, right),
+                        tap(here, left),
+                        tap(here, x),
+                        tap(here, right),
+                        tap(below, left),
+                        tap(below, x),
+                        tap(below, right),
+                    ];
+                    sharpened(&n, sharpen)
+                } else {
+                    Vec4::from_array(here[x])
+                };
+                for (channel, v) in pixel.iter_mut().zip([c.x, c.y, c.z]) {
+                    *channel = linear_to_srgb8_fast(v);
+                }
+            }
+        });
+    Picture {
+        width: size.0,
+        height: size.1,
+        rgba,
+    }
 }
 
 /// A renderer's temporal state: the history (radiance and age per pixel, and the geometry
@@ -153,20 +185,13 @@ impl History {
         self.sharpen = sharpen_strength(&frame, low_size, size);
     }
 
-    /// What `picture` makes of the accumulated image as the display shows it (its size and
-    /// each pixel's colour by its column and row, [`displayed`]), if a frame was accumulated.
-    pub fn picture<T>(
-        &self,
-        picture: impl FnOnce(u32, u32, &(dyn Fn(u32, u32) -> [f32; 3] + Sync)) -> T,
-    ) -> Option<T> {
+    /// The accumulated image as the display shows it ([`shown`], on the current rayon
+    /// pool), if a frame was accumulated.
+    pub fn picture(&self) -> Option<Picture> {
         let settings = self.clock.settings();
-        let (width, height) = (settings.width, settings.height);
-        let (colour, sharpen) = (&self.colour, self.sharpen);
-        self.accumulated.then(|| {
-            picture(width, height, &|x, y| {
-                displayed(colour, (width, height), sharpen, x, y)
-            })
-        })
+        let size = (settings.width, settings.height);
+        self.accumulated
+            .then(|| shown(&self.colour, size, self.sharpen))
     }
 
     /// The accumulated image, if a frame was accumulated.

@@ -5,12 +5,11 @@
 //! the history's Catmull–Rom filter there, clamped to the four nearest pixels' range, and
 //! the result is shown as the history is (sharpened when its frame resampled it).
 
-use super::{History, displayed};
+use super::{History, shown};
 use glam::Vec4;
 use rayon::prelude::*;
 use steadyray_render::Picture;
 use steadyray_render::temporal::{catmull_rom, floor, project4};
-use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_scene::camera::CameraFrame;
 
 /// Fixed-point steps from a screen pixel to the history pixel that lands on it: the motion
@@ -84,22 +83,7 @@ impl History {
                 }
             });
         // Shown as the history itself is: sharpened when its frame resampled it.
-        let mut rgba = vec![255u8; 4 * width * height];
-        rgba.par_chunks_mut(4 * width)
-            .enumerate()
-            .for_each(|(y, row)| {
-                for (x, pixel) in row.chunks_exact_mut(4).enumerate() {
-                    let colour = displayed(&warped, size, self.sharpen, x as u32, y as u32);
-                    for (channel, c) in pixel.iter_mut().zip(colour) {
-                        *channel = linear_to_srgb8_fast(c);
-                    }
-                }
-            });
-        Some(Picture {
-            width: settings.width,
-            height: settings.height,
-            rgba,
-        })
+        Some(shown(&warped, size, self.sharpen))
     }
 
     /// The history's Catmull–Rom filter at `at` (pixel centres at i + 0.5, taps past the
