@@ -23,8 +23,8 @@ pub(crate) const SHADER_SOURCE: &str = concat!(
 );
 
 /// The temporal resolve's WGSL module ([`crate::temporal`]): layouts, the sample counts, the
-/// sRGB rule, the reprojection rules, and the resolve and history tone map with their
-/// bindings.
+/// sRGB rule, the reprojection rules, the display's sharpening, and the resolve and history
+/// tone map with their bindings.
 pub(crate) const TEMPORAL_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
     include_str!("shaders/sampling.wgsl"),
@@ -35,7 +35,8 @@ pub(crate) const TEMPORAL_SOURCE: &str = concat!(
 );
 
 /// The warped refresh's WGSL module ([`crate::warp`]): layouts, the sRGB rule, the
-/// reprojection rules the resolve uses, and the motion and colour passes with their bindings.
+/// reprojection rules the resolve uses, the display's sharpening, and the motion, colour and
+/// display passes with their bindings.
 pub(crate) const WARP_SOURCE: &str = concat!(
     include_str!("shaders/layout.wgsl"),
     include_str!("shaders/srgb.wgsl"),

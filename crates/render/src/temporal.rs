@@ -42,7 +42,7 @@ pub const APPROX_FLAG: u32 = 0x8000_0000;
 /// Tag bit of a geometry record seen through a mirror (its point is a mirror image, which
 /// does not follow its object's motion).
 pub const MIRROR_FLAG: u32 = 0x4000_0000;
-/// The most strength of the display's sharpening of a resampled history ([`sharpened`],
+/// The largest strength of the display's sharpening of a resampled history ([`sharpened`],
 /// [`sharpen_strength`]): the picture is c + k · (c − the mean of c's four edge neighbours),
 /// clamped to its 3×3 range, with k up to SHARPEN. Every moving frame resamples the history
 /// (Catmull–Rom), and the blur that gathers is what FLIP at the viewing distance holds
