@@ -6,9 +6,8 @@
 mod common;
 
 use common::*;
-use glam::Vec4;
 use steadyray_quality::{Rgb8Image, flip, flip_at};
-use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, neighbourhood, sharpened};
+use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, sharpened_image};
 use steadyray_render::{
     Image, RenderError, RenderSettings, Renderer, SampleStream, SettingsError, TemporalSettings,
 };
@@ -177,20 +176,7 @@ fn a_resampled_history_is_sharpened_for_display() {
     let (w, h) = (history.width, history.height);
     // Frames of one sample a pixel at full scale (`sharpen_strength`).
     let sharpen_strength_of_s1 = SHARPEN * (1.0 - 1.0 / HISTORY_CAP);
-    let sharp = Image {
-        width: w,
-        height: h,
-        pixels: (0..w * h)
-            .map(|i| {
-                let n = neighbourhood(i % w, i / w, w, h, |k| {
-                    let [r, g, b] = history.pixels[k];
-                    Vec4::new(r, g, b, 0.0)
-                });
-                let c = sharpened(&n, sharpen_strength_of_s1);
-                [c.x, c.y, c.z]
-            })
-            .collect(),
-    };
+    let sharp = sharpened_image(&history, sharpen_strength_of_s1);
     let shown = r.read_picture().unwrap();
     assert!(
         shown.rgba == sharp.to_srgb8_rgba(),

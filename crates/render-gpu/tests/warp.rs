@@ -8,10 +8,9 @@
 mod common;
 
 use common::{Diff, compare, gpu};
-use glam::Vec4;
-use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, neighbourhood, sharpened};
+use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, sharpened_image};
 use steadyray_render::{
-    Image, Picture, Presented, RenderError, RenderSettings, Renderer, TemporalSettings,
+    Picture, Presented, RenderError, RenderSettings, Renderer, TemporalSettings,
 };
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::GpuRenderer;
@@ -109,29 +108,13 @@ fn assert_pictures_match(gpu: &Picture, cpu: &Picture, exact: bool, what: &str) 
 /// The history's picture as the host shows it: sharpened by the shared rule, tone-mapped.
 fn host_picture(r: &mut GpuRenderer) -> Picture {
     let image = r.read_image().unwrap();
-    let (width, height) = (image.width, image.height);
     // After a moving full-scale frame of `settings` (S = 4) the display sharpens the history
     // (`sharpen_strength`).
     let k = SHARPEN * (1.0 - 4.0 / HISTORY_CAP);
-    let pixels = (0..width * height)
-        .map(|i| {
-            let n = neighbourhood(i % width, i / width, width, height, |j| {
-                let [r, g, b] = image.pixels[j];
-                Vec4::new(r, g, b, 0.0)
-            });
-            let c = sharpened(&n, k);
-            [c.x, c.y, c.z]
-        })
-        .collect();
-    let shown = Image {
-        width,
-        height,
-        pixels,
-    };
     Picture {
-        width,
-        height,
-        rgba: shown.to_srgb8_rgba(),
+        width: image.width,
+        height: image.height,
+        rgba: sharpened_image(&image, k).to_srgb8_rgba(),
     }
 }
 

@@ -6,7 +6,7 @@
 //! (`render-cpu/src/temporal/`, `temporal.wgsl`) from these rules.
 
 use crate::sampling::sample_offset;
-use crate::{RenderSettings, SettingsError};
+use crate::{Image, RenderSettings, SettingsError};
 use glam::{BVec4A, Vec3, Vec4};
 use steadyray_scene::camera::CameraFrame;
 
@@ -281,16 +281,31 @@ pub fn sharpened(n: &[Vec4; 9], k: f32) -> Vec4 {
     s.max(lo).min(hi)
 }
 
+/// `image` as the display shows a history of it sharpened at strength `k`
+/// ([`sharpen_strength`]): [`sharpened`] at every pixel, taps past the edges repeating the
+/// edge. The rule written plainly, that the backends' display passes are tested against.
+pub fn sharpened_image(image: &Image, k: f32) -> Image {
+    let (width, height) = (image.width, image.height);
+    let pixels = (0..width * height)
+        .map(|i| {
+            let n = neighbourhood(i % width, i / width, width, height, |j| {
+                let [r, g, b] = image.pixels[j];
+                Vec4::new(r, g, b, 0.0)
+            });
+            let c = sharpened(&n, k);
+            [c.x, c.y, c.z]
+        })
+        .collect();
+    Image {
+        width,
+        height,
+        pixels,
+    }
+}
+
 /// The 3×3 neighbourhood of pixel (x, y) of a `width` × `height` image whose pixel i is
 /// `at(i)`, as [`sharpened`] reads it (taps past the edges repeat the edge).
-#[inline]
-pub fn neighbourhood(
-    x: u32,
-    y: u32,
-    width: u32,
-    height: u32,
-    at: impl Fn(usize) -> Vec4,
-) -> [Vec4; 9] {
+fn neighbourhood(x: u32, y: u32, width: u32, height: u32, at: impl Fn(usize) -> Vec4) -> [Vec4; 9] {
     let columns = [x.saturating_sub(1), x, (x + 1).min(width - 1)];
     let rows = [y.saturating_sub(1), y, (y + 1).min(height - 1)];
     std::array::from_fn(|k| at((rows[k / 3] * width + columns[k % 3]) as usize))

@@ -18,8 +18,8 @@ use steadyray_scene::camera::CameraFrame;
 
 /// The picture of the `size` image `colour` (radiance and age per pixel) as the display
 /// shows it: each pixel sharpened at strength `sharpen` ([`sharpened`], its 3×3
-/// neighbourhood as `neighbourhood` gathers it, read here from the three rows around it)
-/// when that is above 0, then tone-mapped; a row at a time on the current rayon pool.
+/// neighbourhood read from the three rows around it, as `sharpened_image` does) when that
+/// is above 0, then tone-mapped; a row at a time on the current rayon pool.
 fn shown(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32) -> Picture {
     let (width, height) = (size.0 as usize, size.1 as usize);
     let row = |y: usize| &colour[y * width..(y + 1) * width];
@@ -90,7 +90,7 @@ pub(crate) struct History {
     accumulated: bool,
     /// The camera frame of the last frame accumulated (for the history's size).
     camera: Option<CameraFrame>,
-    /// How strongly the last frame's history is sharpened for display ([`displayed`],
+    /// How strongly the last frame's history is sharpened for display ([`shown`],
     /// `sharpen_strength`: 0 when it did not resample the history).
     sharpen: f32,
 }
