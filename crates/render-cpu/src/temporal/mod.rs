@@ -10,6 +10,7 @@ pub(crate) use geometry::{Geometry, GeometrySink};
 use glam::Vec4;
 use rayon::prelude::*;
 use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
+use steadyray_render::sampling::samples_for_pixel;
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{HistoryClock, TemporalFrame, sharpen_strength, sharpened};
 use steadyray_render::tonemap::linear_to_srgb8_fast;
@@ -168,6 +169,9 @@ impl History {
             geometry: &self.previous_geometry,
             size,
             frame,
+            counts: std::array::from_fn(|i| {
+                samples_for_pixel(i as u32 % 8, i as u32 / 8, frame.spp) as f32
+            }),
         };
         let width = settings.width as usize;
         self.next_colour

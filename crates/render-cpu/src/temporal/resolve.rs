@@ -10,7 +10,6 @@
 
 use super::geometry::Geometry;
 use glam::Vec4;
-use steadyray_render::sampling::samples_for_pixel;
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{
     APPROX_FLAG, HISTORY_CAP, ID_MASK, MIRROR_FLAG, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP,
@@ -71,7 +70,7 @@ impl Seen {
     /// Whether the history's surface `old` is this one as it was in the previous frame: the
     /// same surface id and, for a point, within the tolerance of its tangent plane and
     /// facing alike.
-    #[inline]
+    #[inline(always)]
     fn sees(&self, old: &Geometry) -> bool {
         if self.key & !DIRECTION != old.tag & ID_MASK {
             return false;
@@ -148,6 +147,10 @@ pub(crate) struct Inputs<'a> {
     pub geometry: &'a [Geometry],
     pub size: (u32, u32),
     pub frame: TemporalFrame,
+    /// A frame pixel's sample count, `samples_for_pixel` at the frame's S, by the pixel's
+    /// place (x mod 8, y mod 8) in the 8×8 dither that sets it: element 8 · (y mod 8) +
+    /// (x mod 8).
+    pub counts: [f32; 64],
 }
 
 /// How the surface of record `g` moved since the previous frame: a surface seen directly in
@@ -311,32 +314,38 @@ impl Inputs<'_> {
     /// The new history of row `y` (`colours`), and the frame pixel whose record is each
     /// pixel's geometry (`sources`).
     pub fn resolve_row(&self, y: u32, colours: &mut [[f32; 4]], sources: &mut [u32]) {
-        let width = self.size.0;
+        let width = self.size.0 as usize;
         let low_w = self.low_size.0;
         let (cy, ly) = (self.rows.covering[y as usize], self.rows.landed[y as usize]);
+        let row_splat = self.rows.splat[y as usize];
         let frame = &self.frame;
-        for (x, (colour, source)) in colours.iter_mut().zip(sources).enumerate() {
-            let (cx, lx) = (self.columns.covering[x], self.columns.landed[x]);
+        let history_row = &self.history[y as usize * width..][..width];
+        let columns = (self.columns.covering.iter())
+            .zip(&self.columns.landed)
+            .zip(&self.columns.splat);
+        let pixels = columns
+            .zip(colours.iter_mut().zip(sources))
+            .zip(history_row);
+        for (x, ((((&cx, &lx), &column_splat), (colour, source)), old)) in pixels.enumerate() {
             let landed = lx != u32::MAX && ly != u32::MAX;
             let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
             *source = sy * low_w + sx;
             let sample = &self.prepared[*source as usize];
             let c = self.low[*source as usize];
             let current_ok = sample.finite;
-            let n = samples_for_pixel(sx, sy, frame.spp) as f32;
+            let n = self.counts[((sy & 7) * 8 + (sx & 7)) as usize];
             // The frame's weight here (`docs/temporal.md`, the splat rule).
             let weight = if landed {
                 1.0
             } else if !frame.still && n >= 2.0 {
-                self.columns.splat[x] * self.rows.splat[y as usize]
+                column_splat * row_splat
             } else {
                 0.0
             };
             let fresh = weight > 0.0 && current_ok;
             let m = n * weight;
             let history = if frame.still {
-                let h = self.history[(y * width) as usize + x];
-                Some(([h[0], h[1], h[2]], h[3]))
+                Some(([old[0], old[1], old[2]], old[3]))
             } else if frame.previous.is_some() {
                 self.reprojected(x as u32, y, (cx, cy), sample)
             } else {
@@ -385,9 +394,10 @@ impl Inputs<'_> {
         sample: &Prepared,
     ) -> Option<([f32; 3], f32)> {
         let r = self.reproject(x, y, sample)?;
-        let kept = self.kept_taps(cx, cy, &r);
+        let centre = (cy * self.low_size.0 + cx) as usize;
+        let kept = self.kept_taps(cx, cy, centre, &r);
         let (colour, age) = self.filtered(&r, kept)?;
-        let Range { lo, hi } = self.ranges[(cy * self.low_size.0 + cx) as usize];
+        let Range { lo, hi } = self.ranges[centre];
         Some(([0, 1, 2].map(|i| colour[i].max(lo[i]).min(hi[i])), age))
     }
 
@@ -420,22 +430,34 @@ impl Inputs<'_> {
     }
 
     /// Which of the four taps of `r` lie in the history and hold a surface that the frame's
-    /// pixels around (cx, cy) still see (bit t for tap t).
+    /// pixels around (cx, cy) (frame pixel `centre`) still see (bit t for tap t).
     #[inline]
-    fn kept_taps(&self, cx: u32, cy: u32, r: &Reprojection) -> u8 {
+    fn kept_taps(&self, cx: u32, cy: u32, centre: usize, r: &Reprojection) -> u8 {
         let (width, height) = (self.size.0 as i32, self.size.1 as i32);
+        let centre = &self.seen[centre];
+        if r.ix >= 0 && r.iy >= 0 && r.ix + 1 < width && r.iy + 1 < height {
+            let (first, w) = ((r.iy * width + r.ix) as usize, width as usize);
+            return self.tap_kept(cx, cy, centre, first)
+                | self.tap_kept(cx, cy, centre, first + 1) << 1
+                | self.tap_kept(cx, cy, centre, first + w) << 2
+                | self.tap_kept(cx, cy, centre, first + w + 1) << 3;
+        }
         let mut kept = 0;
         for t in 0..4 {
             let (tx, ty) = (r.ix + (t & 1), r.iy + (t >> 1));
-            if tx < 0 || ty < 0 || tx >= width || ty >= height {
-                continue;
-            }
-            let i = (ty * width + tx) as usize;
-            if self.seen_nearby(cx, cy, &self.geometry[self.sources[i] as usize]) {
-                kept |= 1 << t;
+            if tx >= 0 && ty >= 0 && tx < width && ty < height {
+                kept |= self.tap_kept(cx, cy, centre, (ty * width + tx) as usize) << t;
             }
         }
         kept
+    }
+
+    /// 1 if the surface of history pixel `i` is one the frame's pixels around (cx, cy) see
+    /// (`centre` is (cx, cy)'s, asked first as the likeliest), else 0.
+    #[inline(always)]
+    fn tap_kept(&self, cx: u32, cy: u32, centre: &Seen, i: usize) -> u8 {
+        let old = &self.geometry[self.sources[i] as usize];
+        u8::from(centre.sees(old) || self.seen_around(cx, cy, old))
     }
 
     /// The history at `r` from the `kept` taps: the Catmull–Rom filter when all four are
@@ -448,13 +470,12 @@ impl Inputs<'_> {
         let mut weight = 0.0f32;
         // Colour and age, summed alike lane by lane.
         let mut sum = Vec4::ZERO;
-        for (t, &w) in r.bilinear.iter().enumerate() {
-            if kept & (1 << t) == 0 {
-                continue;
+        let (first, w) = (r.iy * width + r.ix, width);
+        for (t, (offset, &b)) in [0, 1, w, w + 1].into_iter().zip(&r.bilinear).enumerate() {
+            if kept & (1 << t) != 0 {
+                weight += b;
+                sum += b * Vec4::from_array(self.history[(first + offset) as usize]);
             }
-            let (tx, ty) = (r.ix + (t as i32 & 1), r.iy + (t as i32 >> 1));
-            weight += w;
-            sum += w * Vec4::from_array(self.history[(ty * width + tx) as usize]);
         }
         if weight <= 0.0 {
             return None;
@@ -469,31 +490,24 @@ impl Inputs<'_> {
         finite(colour).then_some((colour, sum.w / weight))
     }
 
-    /// Whether the history's surface `old` is one the frame's 3×3 pixels around (cx, cy)
-    /// see: the centre is asked first, as it is the likeliest.
-    #[inline]
-    fn seen_nearby(&self, cx: u32, cy: u32, old: &Geometry) -> bool {
+    /// Whether the history's surface `old` is one that the frame's pixels around (cx, cy),
+    /// other than (cx, cy) itself, see: asked only where (cx, cy) does not, which is rare.
+    #[cold]
+    #[inline(never)]
+    fn seen_around(&self, cx: u32, cy: u32, old: &Geometry) -> bool {
         let (low_w, low_h) = self.low_size;
-        if self.seen[(cy * low_w + cx) as usize].sees(old) {
-            return true;
-        }
         let (x0, x1) = (cx.saturating_sub(1), (cx + 1).min(low_w - 1));
-        for ny in cy.saturating_sub(1)..=(cy + 1).min(low_h - 1) {
+        (cy.saturating_sub(1)..=(cy + 1).min(low_h - 1)).any(|ny| {
             let row = &self.seen[(ny * low_w + x0) as usize..=(ny * low_w + x1) as usize];
             let skip = if ny == cy {
                 (cx - x0) as usize
             } else {
                 usize::MAX
             };
-            if row
-                .iter()
+            row.iter()
                 .enumerate()
                 .any(|(k, s)| k != skip && s.sees(old))
-            {
-                return true;
-            }
-        }
-        false
+        })
     }
 
     /// The history's Catmull–Rom filter over the 4×4 pixels from (ix − 1, iy − 1) at
