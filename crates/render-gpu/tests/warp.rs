@@ -34,7 +34,7 @@ fn settings(width: u32, height: u32) -> RenderSettings {
     RenderSettings {
         width,
         height,
-        spp: 4.0,
+        spp: 2.0,
         max_depth: 8,
     }
 }
@@ -108,9 +108,9 @@ fn assert_pictures_match(gpu: &Picture, cpu: &Picture, exact: bool, what: &str) 
 /// The history's picture as the host shows it: sharpened by the shared rule, tone-mapped.
 fn host_picture(r: &mut GpuRenderer) -> Picture {
     let image = r.read_image().unwrap();
-    // After a moving full-scale frame of `settings` (S = 4) the display sharpens the history
+    // After a moving full-scale frame of `settings` (S = 2) the display sharpens the history
     // (`sharpen_strength`).
-    let k = SHARPEN * (1.0 - 4.0 / HISTORY_CAP);
+    let k = SHARPEN * (1.0 - 2.0 / HISTORY_CAP);
     Picture {
         width: image.width,
         height: image.height,

@@ -13,11 +13,14 @@ use steadyray_scene::camera::CameraFrame;
 /// The most samples a pixel's history stands for while the camera moves (its age, counted
 /// in samples, is capped here, so a new frame pixel of n samples never weighs less than
 /// n / (HISTORY_CAP + n)): every frame resamples a moving history, and a longer one gathers
-/// more blur than it removes noise (on the corridor's sweep at 640x360, 3.5 pixels a frame,
-/// S = 1, FLIP against the reference was lowest for caps of 5 to 8). Counting samples, not
-/// frames, lets a frame of many samples outweigh the blurred history it would otherwise
-/// be averaged into.
-pub const HISTORY_CAP: f32 = 8.0;
+/// more blur than it removes noise. Counting samples, not frames, lets a frame of many
+/// samples outweigh the blurred history it would otherwise be averaged into. On the
+/// corridor's sweep at 640x360 (the 2-core AMD EPYC VM), 4 against the earlier 8 made the
+/// history at S = 1, scale 0.71 and at S = 2, 3 at full scale 9–21 % better by FLIP at
+/// 12.6 and at 67 pixels a degree (only S = 1 at full scale was 5 % worse at 67), and
+/// lowered displayed FLIP 9–11 % in `bench --temporal on --warp` runs at the paper's band
+/// and at one refresh (`docs/temporal.md`, *Constants*).
+pub const HISTORY_CAP: f32 = 4.0;
 /// The cap while the camera stands still, in frames (STILL_CAP · n samples for a pixel of
 /// n samples a frame): the history is then kept pixel for pixel, without resampling, and
 /// converges toward the reference.
@@ -539,14 +542,17 @@ mod tests {
         let moving = clock.advance(view(0.1).frame(64, 32), 0.0, false, 1.0);
         assert_eq!(
             sharpen_strength(&moving, full, full),
-            SHARPEN * (1.0 - 1.0 / 8.0)
+            SHARPEN * (1.0 - 1.0 / HISTORY_CAP)
         );
         // At half scale a history pixel receives a quarter of a sample a frame.
         assert_eq!(
             sharpen_strength(&moving, (32, 16), full),
-            SHARPEN * (1.0 - 0.25 / 8.0)
+            SHARPEN * (1.0 - 0.25 / HISTORY_CAP)
         );
-        let many = TemporalFrame { spp: 8.0, ..moving };
+        let many = TemporalFrame {
+            spp: HISTORY_CAP,
+            ..moving
+        };
         assert_eq!(sharpen_strength(&many, full, full), 0.0);
         let still = clock.advance(view(0.1).frame(64, 32), 0.0, false, 1.0);
         assert!(still.still);

@@ -33,7 +33,7 @@ const SHAPE_QUAD: u32 = 1u;
 const SHAPE_PLANE: u32 = 2u;
 
 // The temporal mode (steadyray_render::temporal, docs/temporal.md).
-const HISTORY_CAP: f32 = 8.0;
+const HISTORY_CAP: f32 = 4.0;
 const STILL_CAP: f32 = 64.0;
 const SPECULAR_CAP: f32 = 4.0;
 const PLANE_TOLERANCE: f32 = 0.02;
