@@ -7,7 +7,8 @@
 //! standard deviations (1.4826 · MAD of recent relative residuals, floored) is not fitted.
 //! If `confirm` outliers in a row lie on the same side, the cost really changed (a heavier
 //! scene, another machine state): old frames are then forgotten and the model restarts from
-//! the confirming ones. So it does after [`DRIFT_RUN`] fitted frames in a row that all ran
+//! the confirming ones (taking a rise as a cost per ray where their rays are too close to
+//! split it: [`SLOPE_SPAN`]). So it does after [`DRIFT_RUN`] fitted frames in a row that all ran
 //! slower (or all faster) than predicted by more than [`DRIFT_K`] robust standard
 //! deviations: a cost that drifts a little each frame (a mesh filling more of the view) is
 //! never an outlier, and a line fitted across the drift blames it on the fixed cost, which
@@ -26,6 +27,15 @@ pub const DRIFT_RUN: usize = 3;
 /// noise; at 1.5 a coarse (1 ms) timer's rounding, which errs on one side for many frames
 /// at a steady load, set off drifts that moved the quality for nothing.
 pub const DRIFT_K: f64 = 2.0;
+/// The confirming frames of a change of cost refit the whole line only if the most rays
+/// among them are at least this many times the fewest; frames closer together cannot tell a
+/// fixed cost from a cost per ray, and a line through two slow frames of a noisy machine
+/// could then blame the fixed cost for all of it (on the 2-core VM, 15.7 ms at 380 k rays
+/// and 19.4 ms at 277 k gave a fixed cost of 14 ms, and `predictive` cut a one-refresh band's
+/// frames to R = 0 at scale 0.25). Where such a restart would raise the fixed cost, it takes
+/// the change as a cost per ray instead: the reading that cuts less deep for the same
+/// frames, and one that the next frames' other ray counts correct.
+pub const SLOPE_SPAN: f64 = 2.0;
 
 /// Parameters of [`CostModel`].
 #[derive(Clone, Debug, PartialEq)]
@@ -187,15 +197,32 @@ impl CostModel {
 
     /// Forgets every frame and refits to `frames` (x, y) alone: the cost has changed.
     fn restart_from(&mut self, frames: Vec<(f64, f64)>) -> Fit {
-        self.sums = [0.0; 5];
-        for (x, y) in frames {
-            self.add(x, y);
+        let (low, high) = frames
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(x, _)| {
+                (lo.min(x), hi.max(x))
+            });
+        let fixed_before = self.fixed_ms;
+        self.refit_from(&frames, 0.0);
+        if high < SLOPE_SPAN * low && self.fixed_ms > fixed_before {
+            // Frames this close cannot tell a higher fixed cost from a higher cost per ray: a
+            // frame of no rays at no time, weighing as much as they do, takes the rise as a
+            // cost per ray until frames of other ray counts say otherwise.
+            self.refit_from(&frames, frames.len() as f64);
         }
         self.residuals.clear();
         self.errors.clear();
         self.pending.clear();
         self.drift.clear();
         Fit::Shifted
+    }
+
+    /// Refits from `frames` alone, with `at_origin` frames of no rays at no time before them.
+    fn refit_from(&mut self, frames: &[(f64, f64)], at_origin: f64) {
+        self.sums = [at_origin, 0.0, 0.0, 0.0, 0.0];
+        for &(x, y) in frames {
+            self.add(x, y);
+        }
     }
 
     fn raw_predict(&self, x: f64) -> f64 {
@@ -282,6 +309,46 @@ mod tests {
         assert_eq!(m.observe(30e6, 32.0), Fit::Outlier);
         assert_eq!(m.observe(30e6, 32.0), Fit::Shifted);
         assert!((m.predict_ms(30e6).unwrap() - 32.0).abs() < 1.0);
+    }
+
+    /// Two slow frames of a noisy machine (`bench --band refresh` with the temporal mode on
+    /// the 2-core VM: 15.7 ms at 380 k rays, then 19.4 ms at 277 k, after frames of about
+    /// 6.5 ms + 16 ms per million rays) confirm a change, but a line through them puts
+    /// 14 ms in the fixed cost, under which no quality fits a one-refresh band. Their rays are
+    /// too close to split the cost, so the restart takes the rise as a cost per ray.
+    #[test]
+    fn two_slow_frames_close_in_rays_do_not_raise_the_fixed_cost() {
+        let mut m = CostModel::new(CostParams::default());
+        for i in 0..40 {
+            let rays = 330e3 + 2e3 * f64::from(i % 30);
+            let wobble = 1.0 + 0.02 * f64::from(i % 3) - 0.02;
+            m.observe(rays, (6.5 + 16e-6 * rays) * wobble);
+        }
+        let fixed_before = m.fixed_ms();
+        assert_eq!(m.observe(379_640.0, 15.745), Fit::Outlier);
+        assert_eq!(m.observe(277_519.0, 19.437), Fit::Shifted);
+        assert!(m.fixed_ms() <= fixed_before, "fixed {}", m.fixed_ms());
+        // Both frames are explained on the whole, and a tenth of the rays is predicted to
+        // take a tenth of the time, not the 14 ms of the line through them.
+        let predicted = m.predict_ms(379_640.0).unwrap() + m.predict_ms(277_519.0).unwrap();
+        assert!(
+            (predicted / (15.745 + 19.437) - 1.0).abs() < 0.1,
+            "{predicted}"
+        );
+        assert!(
+            m.predict_ms(30e3).unwrap() < 3.0,
+            "{:?}",
+            m.predict_ms(30e3)
+        );
+        // Frames whose rays differ by SLOPE_SPAN or more refit the whole line as before.
+        let mut wide = CostModel::new(CostParams::default());
+        for i in 0..40 {
+            let rays = 330e3 + 2e3 * f64::from(i % 30);
+            wide.observe(rays, 6.5 + 16e-6 * rays);
+        }
+        wide.observe(400e3, 30.0);
+        assert_eq!(wide.observe(100e3, 20.0), Fit::Shifted);
+        assert!(wide.fixed_ms() > 10.0, "fixed {}", wide.fixed_ms());
     }
 
     #[test]
