@@ -16,10 +16,11 @@ use steadyray_scene::camera::CameraFrame;
 /// more blur than it removes noise. Counting samples, not frames, lets a frame of many
 /// samples outweigh the blurred history it would otherwise be averaged into. On the
 /// corridor's sweep at 640x360 (the 2-core AMD EPYC VM), 4 against the earlier 8 made the
-/// history at S = 1, scale 0.71 and at S = 2, 3 at full scale 9–21 % better by FLIP at
-/// 12.6 and at 67 pixels a degree (only S = 1 at full scale was 5 % worse at 67), and
-/// lowered displayed FLIP 9–11 % in `bench --temporal on --warp` runs at the paper's band
-/// and at one refresh (`docs/temporal.md`, *Constants*).
+/// history at S = 1, scale 0.71 and at S = 2 and 3 at full scale 7–22 % better by FLIP at
+/// 12.6 and at 67 pixels a degree (S = 1 at full scale was 3–7 % better at 12.6 and 4–8 %
+/// worse at 67; S = 2 at scale 0.71 level at 12.6, 5 % worse at 67), and lowered displayed
+/// FLIP 9–11 % in `bench --temporal on --warp` runs at the paper's band and at one refresh
+/// (`docs/temporal.md`, *The moving cap, again*).
 pub const HISTORY_CAP: f32 = 4.0;
 /// The cap while the camera stands still, in frames (STILL_CAP · n samples for a pixel of
 /// n samples a frame): the history is then kept pixel for pixel, without resampling, and
