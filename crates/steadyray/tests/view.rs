@@ -159,10 +159,11 @@ fn window_args() -> Vec<String> {
     .collect()
 }
 
-/// Runs `view --frames 30 --screenshot` on `backend` and checks the screenshot against a
-/// `render` of the same view; with `temporal`, both accumulate the 30 frames of the still
-/// view (`view --temporal`, `render --temporal 30`) and must agree as well.
-fn window_matches_render(backend: &str, temporal: bool) {
+/// Runs `view --frames 30 --screenshot` on `backend` with the temporal arguments `flag`
+/// (none: the default) and checks the screenshot against a `render` of the same view; with
+/// `temporal` (what `flag` must amount to), both accumulate the 30 frames of the still view
+/// (`render --temporal 30`) and must agree as well.
+fn window_matches_render(backend: &str, flag: &[&str], temporal: bool) {
     let xvfb = match Xvfb::start() {
         Ok(x) => x,
         Err(why) => skip!("no X server for the window test: {why}"),
@@ -187,9 +188,7 @@ fn window_matches_render(backend: &str, temporal: bool) {
         shot.to_str().unwrap(),
     ];
     view_args.extend(window.iter().map(String::as_str));
-    if temporal {
-        view_args.push("--temporal");
-    }
+    view_args.extend(flag);
     let view = run(Some(&xvfb.display), &view_args);
     let stderr = text(&view.stderr);
     assert!(!stderr.contains("panicked"), "the view panicked:\n{stderr}");
@@ -303,24 +302,27 @@ fn window_matches_render(backend: &str, temporal: bool) {
     );
 }
 
+/// On a GPU the temporal mode starts off (`--temporal auto`, the default).
 #[test]
 fn gpu_window_shows_the_scene_and_the_hud() {
-    window_matches_render("gpu", false);
+    window_matches_render("gpu", &[], false);
 }
 
 #[test]
 fn cpu_window_shows_the_scene_and_the_hud() {
-    window_matches_render("cpu", false);
+    window_matches_render("cpu", &["--temporal", "off"], false);
 }
 
+/// A bare `--temporal` turns the mode on.
 #[test]
 fn gpu_window_shows_the_temporal_history() {
-    window_matches_render("gpu", true);
+    window_matches_render("gpu", &["--temporal"], true);
 }
 
+/// On the CPU renderer the temporal mode starts on (`--temporal auto`, the default).
 #[test]
 fn cpu_window_shows_the_temporal_history() {
-    window_matches_render("cpu", true);
+    window_matches_render("cpu", &[], true);
 }
 
 #[test]

@@ -406,7 +406,7 @@ impl Running {
                     pixel_size: plan
                         .pixel_size
                         .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
-                    temporal: plan.temporal,
+                    temporal: plan.temporal.starts_on(gpu),
                     history: None,
                 };
                 let mode = Mode::Live(Box::new(live));
@@ -485,7 +485,10 @@ impl Running {
                 tmax_ms: plan.band.tmax_ms(),
                 bounds,
                 sweep: plan.sweep,
-                temporal: plan.temporal,
+                temporal: match &mode {
+                    Mode::Live(live) => live.temporal,
+                    Mode::Playback(_) => false,
+                },
                 paused: false,
             },
             window,
