@@ -178,9 +178,14 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 60.0, requires = "temporal")]
     pub rate: f64,
     /// With --temporal: also write the history after every frame into DIR
-    /// (frame_0000.png, frame_0001.png, ...).
+    /// (frame_0000.png, frame_0001.png, ...; the shown picture with --shown).
     #[arg(long, value_name = "DIR", requires = "temporal")]
     pub sequence: Option<PathBuf>,
+    /// With --temporal: write the picture the display shows (as `view` and `bench` show it:
+    /// the history sharpened for display where its frame resampled it, docs/temporal.md)
+    /// instead of the history itself. It is 8-bit sRGB, so the output must be a .png.
+    #[arg(long, requires = "temporal")]
+    pub shown: bool,
     /// Render a reference: draw the samples reserved for references (other sub-pixel
     /// positions and random numbers than any frame's), so that a frame compared with this
     /// image is not scored closer to it for sharing its samples. It needs S of 2 or more

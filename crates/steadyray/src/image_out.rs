@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result, bail};
 use std::path::Path;
-use steadyray_render::Image;
+use steadyray_render::{Image, Picture};
 
 /// The image file formats `render` writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,4 +53,17 @@ pub fn save_image(image: &Image, path: &Path) -> Result<()> {
                 .with_context(|| format!("cannot write {}", path.display()))
         }
     }
+}
+
+/// Writes a display's 8-bit sRGB `picture` as a PNG (the only format that holds it as it
+/// is; the caller checks the extension first).
+pub fn save_picture(picture: &Picture, path: &Path) -> Result<()> {
+    image::save_buffer(
+        path,
+        &picture.rgba,
+        picture.width,
+        picture.height,
+        image::ExtendedColorType::Rgba8,
+    )
+    .with_context(|| format!("cannot write {}", path.display()))
 }

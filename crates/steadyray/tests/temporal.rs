@@ -1,11 +1,14 @@
 //! The temporal mode on the command line: `render --temporal` writes the accumulated
-//! history at full size (also at a reduced scale) and every frame with `--sequence`; `bench
+//! history at full size (also at a reduced scale) and every frame with `--sequence`, or with
+//! `--shown` the picture the display shows; `bench
 //! --temporal both` runs every controller without and with it; `--warp` warps the temporal
 //! runs' refreshes without a new frame; bad values are clear errors.
 
 use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
+use steadyray_render::Image;
+use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, sharpened_image};
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
@@ -76,6 +79,74 @@ fn render_writes_the_history_and_the_sequence() {
         (stats["width"].clone(), stats["height"].clone()),
         (32.into(), 18.into())
     );
+}
+
+/// `render --temporal --shown` writes what the display shows: the history, written as it is
+/// (linear, .exr) by the same command without `--shown`, sharpened for display at the
+/// strength its frames call for, and tone-mapped; a `.exr` output with `--shown` is an
+/// error.
+#[test]
+fn render_shown_writes_the_sharpened_history() {
+    let dir = scratch("shown");
+    let render = |extra: &[&str], out: &PathBuf| {
+        let mut args = vec![
+            "render",
+            "--backend",
+            "cpu",
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "--spp",
+            "1",
+            "--depth",
+            "4",
+            "--time",
+            "0.5",
+            "--temporal",
+            "6",
+            "--scale",
+            "0.5",
+            "-o",
+        ];
+        args.push(out.to_str().unwrap());
+        args.extend(extra);
+        run(&args)
+    };
+    let history_path = dir.join("history.exr");
+    let output = render(&[], &history_path);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let shown_path = dir.join("shown.png");
+    let output = render(&["--shown"], &shown_path);
+    assert!(output.status.success(), "{}", stderr(&output));
+
+    let history = image::open(&history_path).unwrap().into_rgb32f();
+    let history = Image {
+        width: 64,
+        height: 36,
+        pixels: history.pixels().map(|p| p.0).collect(),
+    };
+    // One sample a frame pixel at scale 0.5: a quarter of a sample a history pixel.
+    let strength = SHARPEN * (1.0 - 0.25 / HISTORY_CAP);
+    let expected = sharpened_image(&history, strength).to_srgb8_rgba();
+    let shown = image::open(&shown_path).unwrap().into_rgba8().into_raw();
+    assert!(
+        shown == expected,
+        "--shown did not write the sharpened history"
+    );
+    assert!(
+        shown != history.to_srgb8_rgba(),
+        "the sharpening changed nothing: the test shows nothing"
+    );
+
+    let output = render(&["--shown"], &dir.join("shown.exr"));
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("must be a .png"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(!dir.join("shown.exr").exists(), "nothing written");
 }
 
 #[test]

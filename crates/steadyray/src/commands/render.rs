@@ -1,12 +1,14 @@
-//! `steadyray render`: one still image, or with `--temporal` the history of a sequence.
+//! `steadyray render`: one still image, or with `--temporal` the history of a sequence (with
+//! `--shown`, the picture the display shows of it).
 
 use crate::backend::create_renderer;
 use crate::cli::RenderArgs;
-use crate::image_out::{image_format, save_image};
+use crate::image_out::{ImageFormat, image_format, save_image, save_picture};
 use anyhow::{Context, Result, bail};
 use serde_json::json;
+use std::path::Path;
 use steadyray_render::sample_stream::check_reference_spp;
-use steadyray_render::{RenderSettings, SampleStream, TemporalSettings};
+use steadyray_render::{RenderSettings, Renderer, SampleStream, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
 /// Where the asked-for view comes from: a fixed camera, or the scene's path at a time.
@@ -44,7 +46,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if args.reference {
         check_reference_spp(args.spp)?;
     }
-    image_format(&args.output)?;
+    if image_format(&args.output)? != ImageFormat::Png && args.shown {
+        bail!(
+            "--shown writes the display's 8-bit picture: {} must be a .png",
+            args.output.display()
+        );
+    }
     if let Some(t) = args.time
         && !t.is_finite()
     {
@@ -124,17 +131,30 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let t = sequence.time(i);
         stats = Some(renderer.render(&camera_at(t), t, &settings)?);
         if let Some(dir) = &args.sequence {
-            let path = dir.join(format!("frame_{i:04}.png"));
-            save_image(&renderer.read_image()?, &path)?;
+            write_last(
+                renderer.as_mut(),
+                args.shown,
+                &dir.join(format!("frame_{i:04}.png")),
+            )?;
         }
     }
     let stats = stats.context("no frame rendered")?;
-    let image = renderer.read_image()?;
-    save_image(&image, &args.output).with_context(|| format!("rendering {} failed", scene.name))?;
+    write_last(renderer.as_mut(), args.shown, &args.output)
+        .with_context(|| format!("rendering {} failed", scene.name))?;
     if args.stats {
         print_stats(&scene, renderer.info(), &settings, &stats, time_s, args);
     }
     Ok(())
+}
+
+/// Writes the last frame's image to `path`: the display's picture with `shown`, else the
+/// image (the history, in the temporal mode) as it is.
+fn write_last(renderer: &mut dyn Renderer, shown: bool, path: &Path) -> Result<()> {
+    if shown {
+        save_picture(&renderer.read_picture()?, path)
+    } else {
+        save_image(&renderer.read_image()?, path)
+    }
 }
 
 /// Prints the last frame's statistics as one JSON line.
@@ -156,6 +176,7 @@ fn print_stats(
         "depth": settings.max_depth,
         "time_s": time_s,
         "temporal_frames": args.temporal,
+        "shown": args.shown,
         "render_ms": stats.render_ms,
         "accel_ms": stats.accel_ms,
         "wall_ms": stats.wall_ms,
