@@ -13,8 +13,8 @@ use glam::Vec4;
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{
     APPROX_FLAG, HISTORY_CAP, ID_MASK, MIRROR_FLAG, NORMAL_COS, PLANE_TOLERANCE, SPECULAR_CAP,
-    STILL_CAP, TemporalFrame, catmull_rom, covering, dot3, floor, landed_from, project4,
-    splat_weight,
+    STILL_CAP, TemporalFrame, catmull_rom, centre_weight, covering, dot3, floor, landed_from,
+    project4, splat_weight,
 };
 use steadyray_scene::camera::CameraFrame;
 
@@ -88,13 +88,24 @@ impl Seen {
 }
 
 /// For each history column (or row): the frame column covering its centre, the frame
-/// column landing in it (`u32::MAX` for none), and the covering column's tent weight there
-/// (`splat_weight`).
+/// column landing in it (`u32::MAX` for none), the covering column's tent weight there
+/// (`splat_weight`), and the weights that read the frame at its centre ([`Centre`]).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Axis {
     covering: Vec<u32>,
     landed: Vec<u32>,
     splat: Vec<f32>,
+    centre: Vec<Centre>,
+}
+
+/// The `centre_weight`s at a history column's centre of the frame columns landed − 1,
+/// landed and landed + 1 (0 outside the frame or where none lands): `w[0]` for samples at
+/// the anchor (a pixel of one sample), `w[1]` at the pixel's centre (two or more); bit j of
+/// `live` is set where either weight of column j is not 0.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Centre {
+    w: [[f32; 3]; 2],
+    live: u8,
 }
 
 impl Axis {
@@ -113,6 +124,24 @@ impl Axis {
                 .zip(0..full)
                 .map(|(&c, x)| splat_weight(x, c, full, low)),
         );
+        self.centre.clear();
+        self.centre
+            .extend(self.landed.iter().zip(0..full).map(|(&landed, x)| {
+                let w = [anchor, 0.5].map(|at| {
+                    [0, 1, 2].map(|k| {
+                        let s = landed.wrapping_add(k).wrapping_sub(1);
+                        if landed != u32::MAX && s < low {
+                            centre_weight(x, s, at, full, low)
+                        } else {
+                            0.0
+                        }
+                    })
+                });
+                let live = (0..3)
+                    .filter(|&j| w[0][j] != 0.0 || w[1][j] != 0.0)
+                    .fold(0, |live, j| live | 1 << j);
+                Centre { w, live }
+            }));
     }
 }
 
@@ -151,6 +180,9 @@ pub(crate) struct Inputs<'a> {
     /// place (x mod 8, y mod 8) in the 8×8 dither that sets it: element 8 · (y mod 8) +
     /// (x mod 8).
     pub counts: [f32; 64],
+    /// Where every frame pixel's samples' centroid lies, when they all agree: 0 at the
+    /// anchor (S ≤ 1: one sample each), 1 at the centre (S ≥ 2); None when S mixes them.
+    pub centroid_class: Option<usize>,
 }
 
 /// How the surface of record `g` moved since the previous frame: a surface seen directly in
@@ -331,8 +363,17 @@ impl Inputs<'_> {
             let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
             *source = sy * low_w + sx;
             let sample = &self.prepared[*source as usize];
-            let c = self.low[*source as usize];
             let current_ok = sample.finite;
+            let c = if landed && !frame.still && current_ok {
+                self.at_centre(
+                    sx,
+                    sy,
+                    &self.columns.centre[x],
+                    &self.rows.centre[y as usize],
+                )
+            } else {
+                self.low[*source as usize]
+            };
             let n = self.counts[((sy & 7) * 8 + (sx & 7)) as usize];
             // The frame's weight here (`docs/temporal.md`, the splat rule).
             let weight = if landed {
@@ -378,6 +419,53 @@ impl Inputs<'_> {
                 (None, false) if current_ok => [c[0], c[1], c[2], 0.0],
                 (None, false) => [0.0; 4],
             };
+        }
+    }
+
+    /// The frame at the centre of a history pixel where frame pixel (sx, sy) lands, in a
+    /// moving frame: the finite colours of the 3×3 frame pixels around it (those inside the
+    /// frame, row by row), each weighted by the `centre_weight`s of its samples' centroid
+    /// (`column` and `row`: the landed axis tables), over the sum of the weights. Pixels
+    /// whose weight is 0 add nothing and are skipped (the GPU adds their +0: the same bits),
+    /// which leaves four of the nine at most; a pixel read alone with weight 1 is its own
+    /// colour, exactly.
+    #[inline]
+    fn at_centre(&self, sx: u32, sy: u32, column: &Centre, row: &Centre) -> [f32; 3] {
+        let low_w = self.low_size.0;
+        let own = (sy * low_w + sx) as usize;
+        // The anchor's weights for a pixel of one sample, the centre's for more.
+        let class = |nx: u32, ny: u32| {
+            self.centroid_class.unwrap_or_else(|| {
+                usize::from(self.counts[((ny & 7) * 8 + (nx & 7)) as usize] >= 2.0)
+            })
+        };
+        if column.live == 0b010 && row.live == 0b010 {
+            let at = class(sx, sy);
+            if column.w[at][1] * row.w[at][1] == 1.0 {
+                return self.low[own];
+            }
+        }
+        let mut sum = Vec4::ZERO;
+        let mut total = 0.0f32;
+        for k in (0..3).filter(|k| row.live & 1 << k != 0) {
+            let ny = (sy + k as u32).wrapping_sub(1);
+            for j in (0..3).filter(|j| column.live & 1 << j != 0) {
+                let nx = (sx + j as u32).wrapping_sub(1);
+                let i = (ny * low_w + nx) as usize;
+                let at = class(nx, ny);
+                let w = column.w[at][j] * row.w[at][k];
+                if w == 0.0 || !self.prepared[i].finite {
+                    continue;
+                }
+                let [r, g, b] = self.low[i];
+                sum += w * Vec4::new(r, g, b, 0.0);
+                total += w;
+            }
+        }
+        if total > 0.0 {
+            [sum.x / total, sum.y / total, sum.z / total]
+        } else {
+            self.low[own]
         }
     }
 

@@ -112,6 +112,44 @@ fn landed_from(x: u32, anchor: f32, full: u32, low: u32) -> i32 {
     return -1;
 }
 
+// The tent weight, along one axis, at the centre of full column x of the samples of low
+// column s whose centroid lies `at` past its left edge (centre_weight).
+fn centre_weight(x: u32, s: u32, at: f32, full: u32, low: u32) -> f32 {
+    let position = (f32(s) + at) * f32(full) / f32(low);
+    return max(1.0 - abs(position - (f32(x) + 0.5)), 0.0);
+}
+
+// The frame at the centre of history pixel (x, y), where frame pixel (sx, sy) lands in a
+// moving frame: the finite colours of the 3x3 frame pixels around it (inside the frame, row
+// by row) weighted by the tent of their samples' centroid (the anchor for one sample, the
+// centre for more), over the sum of the weights; `own` where no weight is left.
+fn frame_at_centre(x: u32, y: u32, sx: u32, sy: u32, own: vec3<f32>) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
+    var total = 0.0;
+    let y_end = min(sy + 1u, params.low_height - 1u);
+    let x_end = min(sx + 1u, params.low_width - 1u);
+    for (var ny = max(sy, 1u) - 1u; ny <= y_end; ny++) {
+        for (var nx = max(sx, 1u) - 1u; nx <= x_end; nx++) {
+            let cc = frame_image[ny * params.low_width + nx].xyz;
+            if !finite3(cc) {
+                continue;
+            }
+            var at = vec2<f32>(0.5, 0.5);
+            if samples_for_pixel(nx, ny, params.spp) < 2u {
+                at = params.anchor;
+            }
+            let w = centre_weight(x, nx, at.x, params.width, params.low_width)
+                * centre_weight(y, ny, at.y, params.height, params.low_height);
+            sum += w * cc;
+            total += w;
+        }
+    }
+    if total > 0.0 {
+        return vec3<f32>(sum.x / total, sum.y / total, sum.z / total);
+    }
+    return own;
+}
+
 // The frame's 3x3 pixels around the covering one (those inside the frame, row by row): the
 // range of their finite colours and their indices.
 var<private> near_pixels: array<u32, 9>;
@@ -284,8 +322,12 @@ fn resolve(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let source = sy * params.low_width + sx;
     let g = frame_record(source);
-    let c = frame_image[source].xyz;
+    var c = frame_image[source].xyz;
     let current_ok = finite3(c);
+    // Where it landed in a moving frame, the frame is read at the pixel's centre.
+    if landed && params.still == 0u && current_ok {
+        c = frame_at_centre(x, y, sx, sy, c);
+    }
     let n = f32(samples_for_pixel(sx, sy, params.spp));
     // The frame's weight here: 1 where it landed; below scale 1 in a moving frame, a pixel
     // of two or more samples (centroid at its centre) reaches the pixels it covers by
