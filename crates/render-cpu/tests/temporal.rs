@@ -123,6 +123,15 @@ fn sweep_history(scene: &Scene, frame: &RenderSettings) -> Image {
     r.read_image().unwrap()
 }
 
+/// FLIP against `reference` of [`sweep_history`] with frames of `width` × `height` at S =
+/// `spp` (R = 8): below 160×90 the frames are at a resolution scale below 1.
+fn moving_history_flip(scene: &Scene, reference: &Image, width: u32, height: u32, spp: f32) -> f64 {
+    flip_against(
+        reference,
+        &sweep_history(scene, &settings(width, height, spp, 8)),
+    )
+}
+
 /// The corridor's sweep at 0.5 s seen after 30 frames 1/60 s apart leading up to it: at
 /// every S the history must beat one frame at that S. Before ages counted samples and the jitter kept each frame's centroid, S = 4 and
 /// S = 16 lost here (FLIP 0.0176 and 0.0168 against 0.0157 and 0.0090 for one frame).
@@ -154,12 +163,7 @@ fn a_moving_history_beats_the_frame_alone_at_every_s() {
 #[test]
 fn below_scale_one_more_samples_make_a_better_moving_history() {
     let (scene, _, reference) = sweep_end();
-    let history = |spp: f32| {
-        flip_against(
-            &reference,
-            &sweep_history(&scene, &settings(80, 45, spp, 8)),
-        )
-    };
+    let history = |spp| moving_history_flip(&scene, &reference, 80, 45, spp);
     let (one, four, sixteen) = (history(1.0), history(4.0), history(16.0));
     eprintln!(
         "scale 0.5, history of 30 moving frames: S = 1 {one:.4}, S = 4 {four:.4}, S = 16 {sixteen:.4}"
@@ -180,12 +184,7 @@ fn below_scale_one_more_samples_make_a_better_moving_history() {
 #[test]
 fn just_below_scale_one_more_samples_do_not_make_a_worse_moving_history() {
     let (scene, _, reference) = sweep_end();
-    let history = |spp: f32| {
-        flip_against(
-            &reference,
-            &sweep_history(&scene, &settings(152, 86, spp, 8)),
-        )
-    };
+    let history = |spp| moving_history_flip(&scene, &reference, 152, 86, spp);
     let (one, two) = (history(1.0), history(2.0));
     eprintln!("scale 0.95, history of 30 moving frames: S = 1 {one:.4}, S = 2 {two:.4}");
     assert!(

@@ -202,10 +202,11 @@ pub fn splat_weight(x: u32, c: u32, full: u32, low: u32) -> f32 {
 /// The tent weight, along one axis, at the centre of full-resolution column `x`, of the
 /// samples of low-resolution column `s` whose centroid lies `at` past the column's left edge
 /// (the anchor for a pixel of one sample, ½ for two or more): max(1 − |(s + at) · full / low
-/// − (x + ½)|, 0), the distance measured in full-resolution pixels. Where a frame pixel lands in a moving history,
-/// the frame is read at the history pixel's centre with these weights (`docs/temporal.md`,
-/// step 1 of the resolve): a sample that lands off the centre otherwise shifts the picture,
-/// by the jitter at scale 1 and by where the landing falls below it.
+/// − (x + ½)|, 0), the distance measured in full-resolution pixels. Where a frame pixel
+/// lands in a moving history, the frame is read at the history pixel's centre with these
+/// weights (`docs/temporal.md`, step 1 of the resolve): a sample that lands off the centre
+/// otherwise shifts the picture, by the jitter at scale 1 and by where the landing falls
+/// below it.
 #[inline]
 pub fn centre_weight(x: u32, s: u32, at: f32, full: u32, low: u32) -> f32 {
     let position = (s as f32 + at) * full as f32 / low as f32;

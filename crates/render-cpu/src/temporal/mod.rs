@@ -156,9 +156,6 @@ impl History {
             });
         self.columns.fill(size.0, low_size.0, frame.anchor[0]);
         self.rows.fill(size.1, low_size.1, frame.anchor[1]);
-        let counts: [f32; 64] = std::array::from_fn(|i| {
-            samples_for_pixel(i as u32 % 8, i as u32 / 8, frame.spp) as f32
-        });
         let inputs = Inputs {
             low: &self.low,
             prepared: &self.prepared,
@@ -172,14 +169,9 @@ impl History {
             geometry: &self.previous_geometry,
             size,
             frame,
-            counts,
-            centroid_class: if counts.iter().all(|&n| n < 2.0) {
-                Some(0)
-            } else if counts.iter().all(|&n| n >= 2.0) {
-                Some(1)
-            } else {
-                None
-            },
+            counts: std::array::from_fn(|i| {
+                samples_for_pixel(i as u32 % 8, i as u32 / 8, frame.spp) as f32
+            }),
         };
         let width = settings.width as usize;
         self.next_colour

@@ -180,9 +180,6 @@ pub(crate) struct Inputs<'a> {
     /// place (x mod 8, y mod 8) in the 8×8 dither that sets it: element 8 · (y mod 8) +
     /// (x mod 8).
     pub counts: [f32; 64],
-    /// Where every frame pixel's samples' centroid lies, when they all agree: 0 at the
-    /// anchor (S ≤ 1: one sample each), 1 at the centre (S ≥ 2); None when S mixes them.
-    pub centroid_class: Option<usize>,
 }
 
 /// How the surface of record `g` moved since the previous frame: a surface seen directly in
@@ -374,7 +371,7 @@ impl Inputs<'_> {
             } else {
                 self.low[*source as usize]
             };
-            let n = self.counts[((sy & 7) * 8 + (sx & 7)) as usize];
+            let n = self.count_at(sx, sy);
             // The frame's weight here (`docs/temporal.md`, the splat rule).
             let weight = if landed {
                 1.0
@@ -427,24 +424,10 @@ impl Inputs<'_> {
     /// frame, row by row), each weighted by the `centre_weight`s of its samples' centroid
     /// (`column` and `row`: the landed axis tables), over the sum of the weights. Pixels
     /// whose weight is 0 add nothing and are skipped (the GPU adds their +0: the same bits),
-    /// which leaves four of the nine at most; a pixel read alone with weight 1 is its own
-    /// colour, exactly.
+    /// which leaves four of the nine at most.
     #[inline]
     fn at_centre(&self, sx: u32, sy: u32, column: &Centre, row: &Centre) -> [f32; 3] {
         let low_w = self.low_size.0;
-        let own = (sy * low_w + sx) as usize;
-        // The anchor's weights for a pixel of one sample, the centre's for more.
-        let class = |nx: u32, ny: u32| {
-            self.centroid_class.unwrap_or_else(|| {
-                usize::from(self.counts[((ny & 7) * 8 + (nx & 7)) as usize] >= 2.0)
-            })
-        };
-        if column.live == 0b010 && row.live == 0b010 {
-            let at = class(sx, sy);
-            if column.w[at][1] * row.w[at][1] == 1.0 {
-                return self.low[own];
-            }
-        }
         let mut sum = Vec4::ZERO;
         let mut total = 0.0f32;
         for k in (0..3).filter(|k| row.live & 1 << k != 0) {
@@ -452,7 +435,8 @@ impl Inputs<'_> {
             for j in (0..3).filter(|j| column.live & 1 << j != 0) {
                 let nx = (sx + j as u32).wrapping_sub(1);
                 let i = (ny * low_w + nx) as usize;
-                let at = class(nx, ny);
+                // The anchor's weights for a pixel of one sample, the centre's for more.
+                let at = usize::from(self.count_at(nx, ny) >= 2.0);
                 let w = column.w[at][j] * row.w[at][k];
                 if w == 0.0 || !self.prepared[i].finite {
                     continue;
@@ -465,8 +449,14 @@ impl Inputs<'_> {
         if total > 0.0 {
             [sum.x / total, sum.y / total, sum.z / total]
         } else {
-            self.low[own]
+            self.low[(sy * low_w + sx) as usize]
         }
+    }
+
+    /// The samples of frame pixel (x, y), from the 8×8 table [`Inputs::counts`].
+    #[inline]
+    fn count_at(&self, x: u32, y: u32) -> f32 {
+        self.counts[((y & 7) * 8 + (x & 7)) as usize]
     }
 
     /// The reprojected, filtered and clamped history of pixel (x, y) of a moving frame,
