@@ -2,14 +2,14 @@
 //! faster resolve, a reordered loop): every built-in scene at 160×90, at five (frame scale,
 //! S) set-ups, 14 frames each along its path (moving, then three still frames, then moving
 //! again), hashing the history (`read_image`) and the shown picture (`read_picture`) after
-//! every frame. Run it before and after the change; the lines must be equal. The hash is
+//! every frame, and the history warped to a camera a few steps on (`present_warped`). Run it before and after the change; the lines must be equal. The hash is
 //! Rust's `DefaultHasher`, so compare outputs of one toolchain only.
 //!
 //! `cargo run --release -p steadyray-render-cpu --example history_hash`
 
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
-use steadyray_render::{RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{Presented, RenderSettings, Renderer, TemporalSettings};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_scene::{builtin, builtin_names};
 
@@ -57,6 +57,14 @@ fn main() {
                     .expect("a picture")
                     .rgba
                     .hash(&mut hash);
+                // A refresh later: the history warped to a camera that moved on.
+                match renderer
+                    .present_warped(&scene.camera_at(step * 7 + 3, 720))
+                    .expect("warps")
+                {
+                    Presented::Host(picture) => picture.rgba.hash(&mut hash),
+                    Presented::Device => unreachable!("the CPU presents on the host"),
+                }
             }
             let value = hash.finish();
             println!("{name} scale {scale} S {spp}: {value:016x}");

@@ -144,8 +144,8 @@ impl CpuRenderer {
     }
 
     /// The history's picture as `camera` sees it ([`Renderer::present_warped`]).
-    fn warp(&self, camera: &Camera) -> Result<Picture, RenderError> {
-        let history = self.history.as_ref().ok_or_else(|| {
+    fn warp(&mut self, camera: &Camera) -> Result<Picture, RenderError> {
+        let history = self.history.as_mut().ok_or_else(|| {
             RenderError::Unavailable(
                 "a warped refresh needs the temporal mode (its history and geometry)".into(),
             )

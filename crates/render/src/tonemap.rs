@@ -15,18 +15,16 @@ pub fn linear_to_srgb8(c: f32) -> u8 {
 
 /// [`linear_to_srgb8`], fast and to the bit: the tone map does not decrease with radiance, so
 /// it is fixed by the smallest radiance of each level. A table over 4096 buckets of [0, 1]
-/// gives a bucket's first level; the one or two thresholds inside a bucket settle the rest.
+/// gives a bucket's first level; the one threshold that may lie inside a bucket settles the rest.
 /// About ten times faster than the transfer function's `powf`, which matters where every
 /// pixel of every frame is converted on one thread (the CPU backend's way to a window).
 #[inline]
 pub fn linear_to_srgb8_fast(c: f32) -> u8 {
     let table = Srgb8Table::get();
     let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
-    let mut level = table.bucket_level[(c * BUCKETS as f32) as usize];
-    while level < 255 && c >= table.threshold[level as usize] {
-        level += 1;
-    }
-    level
+    let level = table.bucket_level[(c * BUCKETS as f32) as usize];
+    // Levels lie more than a bucket apart, so at most one edge falls inside a bucket.
+    level + u8::from(level < 255 && c >= table.threshold[usize::from(level.min(254))])
 }
 
 /// The smallest radiance of each level 1..=255 of [`linear_to_srgb8`] (entry k for level
@@ -113,6 +111,16 @@ mod tests {
     fn round_trips_every_level() {
         for v in 0..=255u8 {
             assert_eq!(linear_to_srgb8(srgb8_to_linear(v)), v);
+        }
+    }
+
+    /// No bucket holds two levels' edges: the fast tone map steps at most once past a
+    /// bucket's first level.
+    #[test]
+    fn a_bucket_holds_at_most_one_edge() {
+        let bucket = |t: f32| (t * BUCKETS as f32) as usize;
+        for pair in Srgb8Table::get().threshold.windows(2) {
+            assert!(bucket(pair[0]) < bucket(pair[1]), "{pair:?}");
         }
     }
 

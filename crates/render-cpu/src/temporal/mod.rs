@@ -94,6 +94,9 @@ pub(crate) struct History {
     /// How strongly the last frame's history is sharpened for display ([`shown`],
     /// `sharpen_strength`: 0 when it did not resample the history).
     sharpen: f32,
+    /// A warped refresh's motion field and picture before display, kept for the next warp.
+    warp_motion: Vec<[f32; 2]>,
+    warp_colour: Vec<[f32; 4]>,
 }
 
 impl History {
@@ -118,6 +121,8 @@ impl History {
             accumulated: false,
             camera: None,
             sharpen: 0.0,
+            warp_motion: Vec::new(),
+            warp_colour: Vec::new(),
         }
     }
 

@@ -23,12 +23,16 @@ const NO_MOTION: [f32; 2] = [f32::NAN; 2];
 impl History {
     /// The accumulated image as camera frame `to` (made for the history's size) sees it,
     /// tone-mapped as the display shows it, or `None` before the first frame.
-    pub fn warped(&self, to: &CameraFrame) -> Option<Picture> {
+    pub fn warped(&mut self, to: &CameraFrame) -> Option<Picture> {
         let from = self.camera.filter(|_| self.accumulated)?;
         let settings = self.clock.settings();
         let (width, height) = (settings.width as usize, settings.height as usize);
         let size = (settings.width, settings.height);
-        let mut motion = vec![NO_MOTION; width * height];
+        // Buffers kept from warp to warp: each pixel of both is written below.
+        let mut motion = std::mem::take(&mut self.warp_motion);
+        let mut warped = std::mem::take(&mut self.warp_colour);
+        motion.resize(width * height, NO_MOTION);
+        warped.resize(width * height, [0.0; 4]);
         motion
             .par_chunks_mut(width)
             .zip(self.sources.par_chunks(width))
@@ -46,13 +50,14 @@ impl History {
                     let (bx, by, b_ok) = project4(to, q, size);
                     let (dx, dy) = (bx - ax, by - ay);
                     for (lane, m) in motion.iter_mut().enumerate() {
-                        if a_ok.test(lane) && b_ok.test(lane) {
-                            *m = [dx[lane], dy[lane]];
-                        }
+                        *m = if a_ok.test(lane) && b_ok.test(lane) {
+                            [dx[lane], dy[lane]]
+                        } else {
+                            NO_MOTION
+                        };
                     }
                 }
             });
-        let mut warped = vec![[0.0f32; 4]; width * height];
         warped
             .par_chunks_mut(width)
             .enumerate()
@@ -83,7 +88,10 @@ impl History {
                 }
             });
         // Shown as the history itself is: sharpened when its frame resampled it.
-        Some(shown(&warped, size, self.sharpen))
+        let picture = shown(&warped, size, self.sharpen);
+        self.warp_motion = motion;
+        self.warp_colour = warped;
+        Some(picture)
     }
 
     /// The history's Catmull–Rom filter at `at` (pixel centres at i + 0.5, taps past the
