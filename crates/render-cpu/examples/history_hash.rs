@@ -1,9 +1,10 @@
 //! A fingerprint of the CPU temporal mode's output, for changes that must keep its bits (a
 //! faster resolve, a reordered loop): every built-in scene at 160×90, at five (frame scale,
 //! S) set-ups, 14 frames each along its path (moving, then three still frames, then moving
-//! again), hashing the history (`read_image`) and the shown picture (`read_picture`) after
-//! every frame, and the history warped to a camera a few steps on (`present_warped`). Run it before and after the change; the lines must be equal. The hash is
-//! Rust's `DefaultHasher`, so compare outputs of one toolchain only.
+//! again), hashing the history (`read_image`), the shown picture (`read_picture`) and the
+//! history warped to a camera a few steps on (`present_warped`) after every frame. Run it
+//! before and after the change; the lines must be equal. The hash is Rust's
+//! `DefaultHasher`, so compare outputs of one toolchain only.
 //!
 //! `cargo run --release -p steadyray-render-cpu --example history_hash`
 

@@ -15,8 +15,8 @@ pub fn linear_to_srgb8(c: f32) -> u8 {
 
 /// [`linear_to_srgb8`], fast and to the bit: the tone map does not decrease with radiance, so
 /// it is fixed by the smallest radiance of each level. A table over 4096 buckets of [0, 1]
-/// gives a bucket's first level; the one threshold that may lie inside a bucket settles the rest.
-/// About ten times faster than the transfer function's `powf`, which matters where every
+/// gives a bucket's first level; the one threshold that may lie inside a bucket settles the
+/// rest. About ten times faster than the transfer function's `powf`, which matters where every
 /// pixel of every frame is converted on one thread (the CPU backend's way to a window).
 #[inline]
 pub fn linear_to_srgb8_fast(c: f32) -> u8 {
@@ -24,7 +24,7 @@ pub fn linear_to_srgb8_fast(c: f32) -> u8 {
     let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
     let level = table.bucket_level[(c * BUCKETS as f32) as usize];
     // Levels lie more than a bucket apart, so at most one edge falls inside a bucket.
-    level + u8::from(level < 255 && c >= table.threshold[usize::from(level.min(254))])
+    level + u8::from(level < 255 && c >= table.threshold[usize::from(level)])
 }
 
 /// The smallest radiance of each level 1..=255 of [`linear_to_srgb8`] (entry k for level
