@@ -15,6 +15,7 @@ mod probe;
 mod quad;
 mod ray;
 mod render;
+mod simd;
 mod sphere;
 mod temporal;
 mod triangle;

@@ -245,6 +245,7 @@ pub fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
 /// direction, a point at infinity, where w = 0), in pixels of a `size` image: x, y, and
 /// whether each lies in front of the camera (not behind it, on its plane or NaN). Each
 /// lane's arithmetic is the scalar rule's of `docs/temporal.md`, so it rounds alike.
+#[inline]
 pub fn project4(frame: &CameraFrame, q: [Vec4; 4], size: (u32, u32)) -> (Vec4, Vec4, BVec4A) {
     let e = frame.eye;
     let point = q[3].cmpne(Vec4::ZERO);

@@ -7,6 +7,7 @@ mod warp;
 
 pub(crate) use geometry::{Geometry, GeometrySink};
 
+use crate::simd::best_compiled;
 use glam::Vec4;
 use rayon::prelude::*;
 use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
@@ -28,39 +29,49 @@ fn shown(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32) -> Picture {
     rgba.par_chunks_mut(4 * width)
         .enumerate()
         .for_each(|(y, out)| {
-            let (above, here, below) = (
+            let rows = [
                 row(y.saturating_sub(1)),
                 row(y),
                 row((y + 1).min(height - 1)),
+            ];
+            best_compiled(
+                #[inline(always)]
+                || shown_row(rows, sharpen, out),
             );
-            for (x, pixel) in out.chunks_exact_mut(4).enumerate() {
-                let c = if sharpen > 0.0 {
-                    let (left, right) = (x.saturating_sub(1), (x + 1).min(width - 1));
-                    let tap = |r: &[[f32; 4]], i: usize| Vec4::from_array(r[i]);
-                    let n = [
-                        tap(above, left),
-                        tap(above, x),
-                        tap(above, right),
-                        tap(here, left),
-                        tap(here, x),
-                        tap(here, right),
-                        tap(below, left),
-                        tap(below, x),
-                        tap(below, right),
-                    ];
-                    sharpened(&n, sharpen)
-                } else {
-                    Vec4::from_array(here[x])
-                };
-                for (channel, v) in pixel.iter_mut().zip([c.x, c.y, c.z]) {
-                    *channel = linear_to_srgb8_fast(v);
-                }
-            }
         });
     Picture {
         width: size.0,
         height: size.1,
         rgba,
+    }
+}
+
+/// One row of [`shown`] (`out`, RGBA) from the rows above it, its own and the one below.
+#[inline(always)]
+fn shown_row([above, here, below]: [&[[f32; 4]]; 3], sharpen: f32, out: &mut [u8]) {
+    let width = here.len();
+    for (x, pixel) in out.chunks_exact_mut(4).enumerate() {
+        let c = if sharpen > 0.0 {
+            let (left, right) = (x.saturating_sub(1), (x + 1).min(width - 1));
+            let tap = |r: &[[f32; 4]], i: usize| Vec4::from_array(r[i]);
+            let n = [
+                tap(above, left),
+                tap(above, x),
+                tap(above, right),
+                tap(here, left),
+                tap(here, x),
+                tap(here, right),
+                tap(below, left),
+                tap(below, x),
+                tap(below, right),
+            ];
+            sharpened(&n, sharpen)
+        } else {
+            Vec4::from_array(here[x])
+        };
+        for (channel, v) in pixel.iter_mut().zip([c.x, c.y, c.z]) {
+            *channel = linear_to_srgb8_fast(v);
+        }
     }
 }
 
@@ -157,7 +168,10 @@ impl History {
             .zip(self.seen.par_chunks_mut(low_w))
             .enumerate()
             .for_each(|(y, ((prepared, ranges), seen))| {
-                preparing.row(y as u32, prepared, ranges, seen);
+                best_compiled(
+                    #[inline(always)]
+                    || preparing.row(y as u32, prepared, ranges, seen),
+                );
             });
         self.columns.fill(size.0, low_size.0, frame.anchor[0]);
         self.rows.fill(size.1, low_size.1, frame.anchor[1]);

@@ -185,6 +185,7 @@ pub(crate) struct Inputs<'a> {
 /// How the surface of record `g` moved since the previous frame: a surface seen directly in
 /// a world that moved follows its object; anything else is taken as still (seen through a
 /// mirror, its image does not follow its object: that is left to the cap and the clamp).
+#[inline]
 pub(crate) fn move_of(g: &Geometry, frame: &TemporalFrame, moves: &[SurfaceMove]) -> SurfaceMove {
     if !frame.world_moved || g.q[3] == 0.0 || g.tag & MIRROR_FLAG != 0 {
         return SurfaceMove::Still;
@@ -204,6 +205,7 @@ fn finite(c: [f32; 3]) -> bool {
 impl Preparing<'_> {
     /// What the resolve needs of frame row `y`: each pixel's [`Prepared`], [`Range`] and
     /// [`Seen`], four pixels at a time.
+    #[inline(always)]
     pub fn row(&self, y: u32, prepared: &mut [Prepared], ranges: &mut [Range], seen: &mut [Seen]) {
         let start = (y * self.low_size.0) as usize;
         self.ranges(y, ranges);
@@ -215,6 +217,7 @@ impl Preparing<'_> {
     /// [`Preparing::row`] of the (up to) four frame pixels from `first`: the points moved
     /// back per pixel, then projected and measured four lanes at once (each lane's
     /// arithmetic is the scalar's, so it rounds alike).
+    #[inline(always)]
     fn four(&self, first: usize, prepared: &mut [Prepared], seen: &mut [Seen]) {
         let records = &self.low_geometry[first..first + prepared.len()];
         // Component-major: q[c][lane].
@@ -287,6 +290,7 @@ impl Preparing<'_> {
     /// The colour ranges of frame row `y`: the minimum and maximum of each column's finite
     /// colours over rows y − 1 to y + 1, then over columns x − 1 to x + 1 (no frame colour
     /// is −0, a sum from +0 of non-negative terms, so the order cannot change a bit).
+    #[inline]
     fn ranges(&self, y: u32, ranges: &mut [Range]) {
         let (low_w, low_h) = (self.low_size.0 as usize, self.low_size.1);
         let (first, last) = (y.saturating_sub(1), (y + 1).min(low_h - 1));
@@ -323,6 +327,7 @@ impl Preparing<'_> {
 }
 
 /// The distances |q − eye| of four points (lanes of x, y, z).
+#[inline]
 fn distance4(q: [Vec4; 4], eye: [f32; 3]) -> Vec4 {
     let d = [q[0] - eye[0], q[1] - eye[1], q[2] - eye[2]];
     (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()

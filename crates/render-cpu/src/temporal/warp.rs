@@ -6,6 +6,7 @@
 //! the result is shown as the history is (sharpened when its frame resampled it).
 
 use super::{History, shown};
+use crate::simd::best_compiled;
 use glam::Vec4;
 use rayon::prelude::*;
 use steadyray_render::Picture;
@@ -37,55 +38,19 @@ impl History {
             .par_chunks_mut(width)
             .zip(self.sources.par_chunks(width))
             .for_each(|(row, sources)| {
-                for (motion, sources) in row.chunks_mut(4).zip(sources.chunks(4)) {
-                    let mut q = [[0.0f32; 4]; 4];
-                    for (lane, &source) in sources.iter().enumerate() {
-                        let g = &self.previous_geometry[source as usize];
-                        for (component, &v) in q.iter_mut().zip(&g.q) {
-                            component[lane] = v;
-                        }
-                    }
-                    let q = q.map(Vec4::from_array);
-                    let (ax, ay, a_ok) = project4(&from, q, size);
-                    let (bx, by, b_ok) = project4(to, q, size);
-                    let (dx, dy) = (bx - ax, by - ay);
-                    for (lane, m) in motion.iter_mut().enumerate() {
-                        *m = if a_ok.test(lane) && b_ok.test(lane) {
-                            [dx[lane], dy[lane]]
-                        } else {
-                            NO_MOTION
-                        };
-                    }
-                }
+                best_compiled(
+                    #[inline(always)]
+                    || self.motion_row(&from, to, row, sources),
+                );
             });
         warped
             .par_chunks_mut(width)
             .enumerate()
             .for_each(|(y, row)| {
-                for (x, pixel) in row.iter_mut().enumerate() {
-                    let target = [x as f32 + 0.5, y as f32 + 0.5];
-                    let mut at = target;
-                    let mut read = usize::MAX;
-                    for _ in 0..WARP_STEPS {
-                        // The pixel under `at`, clamped to the image: floor(at) is the
-                        // truncation once at is at least 0.
-                        let px = (at[0].max(0.0) as usize).min(width - 1);
-                        let py = (at[1].max(0.0) as usize).min(height - 1);
-                        let pixel = py * width + px;
-                        if pixel == read {
-                            // The same motion again: at stays where it is.
-                            break;
-                        }
-                        read = pixel;
-                        let m = motion[pixel];
-                        if m[0].is_nan() {
-                            break;
-                        }
-                        at = [target[0] - m[0], target[1] - m[1]];
-                    }
-                    let [r, g, b] = self.filtered_at(at, (width, height));
-                    *pixel = [r, g, b, 0.0];
-                }
+                best_compiled(
+                    #[inline(always)]
+                    || self.warp_row(y, row, &motion),
+                );
             });
         // Shown as the history itself is: sharpened when its frame resampled it.
         let picture = shown(&warped, size, self.sharpen);
@@ -94,45 +59,110 @@ impl History {
         Some(picture)
     }
 
+    /// The motion field of one history row (`motion`, whose pixels' records are `sources`):
+    /// where each record's point moves from camera `from` to camera `to`, four pixels at a
+    /// time.
+    #[inline(always)]
+    fn motion_row(
+        &self,
+        from: &CameraFrame,
+        to: &CameraFrame,
+        motion: &mut [[f32; 2]],
+        sources: &[u32],
+    ) {
+        let settings = self.clock.settings();
+        let size = (settings.width, settings.height);
+        for (motion, sources) in motion.chunks_mut(4).zip(sources.chunks(4)) {
+            let mut q = [[0.0f32; 4]; 4];
+            for (lane, &source) in sources.iter().enumerate() {
+                let g = &self.previous_geometry[source as usize];
+                for (component, &v) in q.iter_mut().zip(&g.q) {
+                    component[lane] = v;
+                }
+            }
+            let q = q.map(Vec4::from_array);
+            let (ax, ay, a_ok) = project4(from, q, size);
+            let (bx, by, b_ok) = project4(to, q, size);
+            let (dx, dy) = (bx - ax, by - ay);
+            for (lane, m) in motion.iter_mut().enumerate() {
+                *m = if a_ok.test(lane) && b_ok.test(lane) {
+                    [dx[lane], dy[lane]]
+                } else {
+                    NO_MOTION
+                };
+            }
+        }
+    }
+
+    /// Row `y` of the warped picture from the motion field `motion`: each pixel's fixed-point
+    /// steps, then the history's filter there.
+    #[inline(always)]
+    fn warp_row(&self, y: usize, row: &mut [[f32; 4]], motion: &[[f32; 2]]) {
+        let settings = self.clock.settings();
+        let (width, height) = (settings.width as usize, settings.height as usize);
+        for (x, pixel) in row.iter_mut().enumerate() {
+            let target = [x as f32 + 0.5, y as f32 + 0.5];
+            let mut at = target;
+            let mut read = usize::MAX;
+            for _ in 0..WARP_STEPS {
+                // The pixel under `at`, clamped to the image: floor(at) is the
+                // truncation once at is at least 0.
+                let px = (at[0].max(0.0) as usize).min(width - 1);
+                let py = (at[1].max(0.0) as usize).min(height - 1);
+                let pixel = py * width + px;
+                if pixel == read {
+                    // The same motion again: at stays where it is.
+                    break;
+                }
+                read = pixel;
+                let m = motion[pixel];
+                if m[0].is_nan() {
+                    break;
+                }
+                at = [target[0] - m[0], target[1] - m[1]];
+            }
+            let [r, g, b] = self.filtered_at(at, (width, height));
+            *pixel = [r, g, b, 0.0];
+        }
+    }
+
     /// The history's Catmull–Rom filter at `at` (pixel centres at i + 0.5, taps past the
     /// edges clamped to them), clamped to the range of the four pixels around `at` so that
     /// it does not ring at edges.
+    #[inline(always)]
     fn filtered_at(&self, at: [f32; 2], (width, height): (usize, usize)) -> [f32; 3] {
         let (u, v) = (at[0] - 0.5, at[1] - 0.5);
         let (fu, fv) = (floor(u), floor(v));
         let (wx, wy) = (catmull_rom(u - fu), catmull_rom(v - fv));
-        let tap = |i: f32, offset: i64, last: usize| -> usize {
-            (i as i64 + offset).clamp(0, last as i64) as usize
-        };
-        let columns: [usize; 4] = std::array::from_fn(|k| tap(fu, k as i64 - 1, width - 1));
-        let rows: [usize; 4] = std::array::from_fn(|k| tap(fv, k as i64 - 1, height - 1));
-        let at_tap = |c: usize, r: usize| Vec4::from_array(self.colour[r * width + c]);
-        let mut sum = Vec4::ZERO;
-        if columns[3] == columns[0] + 3 {
-            // Inside the image across: each row's four taps lie side by side.
-            for (&r, &wb) in rows.iter().zip(&wy) {
-                let taps = &self.colour[r * width + columns[0]..][..4];
-                let mut line = Vec4::ZERO;
-                for (tap, &wa) in taps.iter().zip(&wx) {
-                    line += wa * Vec4::from_array(*tap);
-                }
-                sum += wb * line;
-            }
+        // The 4 × 4 taps from (fu − 1, fv − 1), rows first.
+        let window: [[Vec4; 4]; 4] = if fu >= 1.0
+            && fu + 2.0 <= (width - 1) as f32
+            && fv >= 1.0
+            && fv + 2.0 <= (height - 1) as f32
+        {
+            // Inside the image: no tap is clamped, and each row's four lie side by side.
+            let first = (fv as usize - 1) * width + fu as usize - 1;
+            std::array::from_fn(|r| {
+                let row = &self.colour[first + r * width..][..4];
+                std::array::from_fn(|c| Vec4::from_array(row[c]))
+            })
         } else {
-            for (&r, &wb) in rows.iter().zip(&wy) {
-                let mut line = Vec4::ZERO;
-                for (&c, &wa) in columns.iter().zip(&wx) {
-                    line += wa * at_tap(c, r);
-                }
-                sum += wb * line;
+            let tap = |i: f32, offset: i64, last: usize| -> usize {
+                (i as i64 + offset).clamp(0, last as i64) as usize
+            };
+            let columns: [usize; 4] = std::array::from_fn(|k| tap(fu, k as i64 - 1, width - 1));
+            let rows: [usize; 4] = std::array::from_fn(|k| tap(fv, k as i64 - 1, height - 1));
+            rows.map(|r| columns.map(|c| Vec4::from_array(self.colour[r * width + c])))
+        };
+        let mut sum = Vec4::ZERO;
+        for (taps, &wb) in window.iter().zip(&wy) {
+            let mut line = Vec4::ZERO;
+            for (&tap, &wa) in taps.iter().zip(&wx) {
+                line += wa * tap;
             }
+            sum += wb * line;
         }
-        let near = [
-            at_tap(columns[1], rows[1]),
-            at_tap(columns[2], rows[1]),
-            at_tap(columns[1], rows[2]),
-            at_tap(columns[2], rows[2]),
-        ];
+        let near = [window[1][1], window[1][2], window[2][1], window[2][2]];
         let lo = near[0].min(near[1]).min(near[2]).min(near[3]);
         let hi = near[0].max(near[1]).max(near[2]).max(near[3]);
         let c = sum.max(lo).min(hi);
