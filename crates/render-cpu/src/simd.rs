@@ -9,7 +9,7 @@
 
 /// The vector extensions a pass is compiled for.
 #[cfg(target_arch = "x86_64")]
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
 enum Level {
     /// The workspace's build (SSE2).
     Baseline,
@@ -23,6 +23,17 @@ enum Level {
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn level() -> Level {
+    #[cfg(test)]
+    if let Some(forced) = tests::forced() {
+        return forced;
+    }
+    detected()
+}
+
+/// The best [`Level`] this CPU has.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn detected() -> Level {
     use std::arch::is_x86_feature_detected as has;
     if !has!("avx2") {
         Level::Baseline
@@ -61,4 +72,90 @@ fn avx2<R>(pass: impl FnOnce() -> R) -> R {
 #[target_feature(enable = "avx2,avx512f,avx512vl")]
 fn avx512<R>(pass: impl FnOnce() -> R) -> R {
     pass()
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::{Level, detected};
+    use crate::CpuRenderer;
+    use std::sync::atomic::{AtomicU8, Ordering};
+    use steadyray_render::{Presented, RenderSettings, Renderer, TemporalSettings};
+    use steadyray_scene::builtin;
+
+    /// The level every pass runs at, while a test forces one (an index into LEVELS).
+    static FORCED: AtomicU8 = AtomicU8::new(NOT_FORCED);
+    const NOT_FORCED: u8 = u8::MAX;
+    const LEVELS: [Level; 3] = [Level::Baseline, Level::Avx2, Level::Avx512];
+
+    /// The level a test forces, if any.
+    pub(super) fn forced() -> Option<Level> {
+        LEVELS
+            .get(usize::from(FORCED.load(Ordering::Relaxed)))
+            .copied()
+    }
+
+    /// The bits of the temporal mode on the corridor's sweep: the history, its shown
+    /// picture and a warp a refresh on, after each of a few moving frames at a scale below
+    /// 1 (so the display sharpens).
+    fn temporal_bits() -> Vec<u32> {
+        let scene = builtin("corridor").expect("the corridor is built in");
+        let mut renderer = CpuRenderer::with_threads(2);
+        renderer.load_scene(&scene).expect("loads");
+        renderer
+            .set_temporal(Some(TemporalSettings {
+                width: 96,
+                height: 54,
+            }))
+            .expect("a valid history");
+        let settings = RenderSettings {
+            width: 68,
+            height: 38,
+            spp: 1.5,
+            max_depth: 8,
+        };
+        let mut bits = Vec::new();
+        for k in 0..6 {
+            let t_s = f64::from(k) / 30.0;
+            renderer
+                .render(&scene.camera_at_time(t_s), t_s, &settings)
+                .expect("renders");
+            let image = renderer.read_image().expect("a history");
+            bits.extend(image.pixels.iter().flatten().map(|v| v.to_bits()));
+            let picture = renderer.read_picture().expect("a picture");
+            bits.extend(picture.rgba.iter().map(|&v| u32::from(v)));
+            match renderer
+                .present_warped(&scene.camera_at_time(t_s + 1.0 / 60.0))
+                .expect("warps")
+            {
+                Presented::Host(picture) => bits.extend(picture.rgba.iter().map(|&v| u32::from(v))),
+                Presented::Device => panic!("the CPU presents on the host"),
+            }
+        }
+        bits
+    }
+
+    /// Each level this CPU runs gives the baseline's bits. (While a level is forced, other
+    /// tests of this crate run at it too: by this test's claim, to the same bits.)
+    #[test]
+    fn every_level_gives_the_same_bits() {
+        let levels: Vec<usize> = (0..LEVELS.len())
+            .filter(|&i| LEVELS[i] <= detected())
+            .collect();
+        let runs: Vec<(Level, Vec<u32>)> = levels
+            .iter()
+            .map(|&i| {
+                FORCED.store(i as u8, Ordering::Relaxed);
+                (LEVELS[i], temporal_bits())
+            })
+            .collect();
+        FORCED.store(NOT_FORCED, Ordering::Relaxed);
+        let (_, baseline) = &runs[0];
+        for (level, bits) in &runs[1..] {
+            assert!(bits == baseline, "{level:?} differs from the baseline");
+        }
+        eprintln!(
+            "levels compared: {:?}",
+            runs.iter().map(|(l, _)| l).collect::<Vec<_>>()
+        );
+    }
 }
