@@ -1,11 +1,11 @@
 //! Per-pixel passes compiled again for the vector extensions of the CPU at hand. The
-//! workspace builds for the x86-64 baseline (SSE2), where converting a float to an index
-//! takes half a dozen instructions and 16 vector registers hold the working set; the same
-//! code compiled for AVX2 or AVX-512 computes the same IEEE operations in the same order
-//! (Rust never fuses a multiply and an add on its own), so every bit stays as it was and
-//! only the instructions differ. Used where it measured a gain (`docs/temporal.md`, *Warps
-//! compiled for the CPU at hand*): a warped refresh's passes, the display's sharpening and
-//! tone map, and the resolve's preparation.
+//! workspace builds for the x86-64 baseline (SSE2: 16 vector registers, several
+//! instructions to turn a float into an index); the same code compiled for AVX2 or AVX-512
+//! computes the same IEEE operations in the same order (Rust never fuses a multiply and an
+//! add on its own), so every bit stays as it was and only the instructions differ. Used
+//! where it measured a gain (`docs/temporal.md`, *Warps compiled for the CPU at hand*): a
+//! warped refresh's passes, the display's sharpening and tone map, and the resolve's
+//! preparation.
 
 /// The vector extensions a pass is compiled for.
 #[cfg(target_arch = "x86_64")]
@@ -19,18 +19,18 @@ enum Level {
     Avx512,
 }
 
-/// The best [`Level`] this CPU runs (the feature checks are cached by the standard library).
+/// The [`Level`] the passes run at: the best this CPU has, or a lower one a test forces.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn level() -> Level {
     #[cfg(test)]
-    if let Some(forced) = tests::forced() {
+    if let Some(forced) = tests::forced().filter(|&forced| forced <= detected()) {
         return forced;
     }
     detected()
 }
 
-/// The best [`Level`] this CPU has.
+/// The best [`Level`] this CPU has (the feature checks are cached by the standard library).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn detected() -> Level {
