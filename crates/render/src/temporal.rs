@@ -289,14 +289,27 @@ pub fn sharpen_strength(frame: &TemporalFrame, low: (u32, u32), full: (u32, u32)
 /// from ringing.
 #[inline]
 pub fn sharpened(n: &[Vec4; 9], k: f32) -> Vec4 {
-    let c = n[4];
-    let cross = ((n[1] + n[7]) + (n[3] + n[5])) * 0.25;
-    let s = c + k * (c - cross);
     let (mut lo, mut hi) = (n[0], n[0]);
     for &v in &n[1..] {
         lo = lo.min(v);
         hi = hi.max(v);
     }
+    sharpened_within(n[4], [n[1], n[3], n[5], n[7]], (lo, hi), k)
+}
+
+/// [`sharpened`] of the pixel `c` whose four neighbours are `[up, left, right, down]`, its
+/// neighbourhood's per-channel range `(lo, hi)` given: for a caller that takes the range
+/// from the column ranges neighbouring pixels share. The minimum and maximum of values that
+/// hold no NaN are the same in any order, and a history holds no NaN.
+#[inline]
+pub fn sharpened_within(
+    c: Vec4,
+    [up, left, right, down]: [Vec4; 4],
+    (lo, hi): (Vec4, Vec4),
+    k: f32,
+) -> Vec4 {
+    let cross = ((up + down) + (left + right)) * 0.25;
+    let s = c + k * (c - cross);
     s.max(lo).min(hi)
 }
 

@@ -13,13 +13,13 @@ use rayon::prelude::*;
 use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
 use steadyray_render::sampling::samples_for_pixel;
 use steadyray_render::surface_motion::SurfaceMove;
-use steadyray_render::temporal::{HistoryClock, TemporalFrame, sharpen_strength, sharpened};
+use steadyray_render::temporal::{HistoryClock, TemporalFrame, sharpen_strength, sharpened_within};
 use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_render::{Image, Picture, TemporalSettings};
 use steadyray_scene::camera::CameraFrame;
 
 /// The picture of the `size` image `colour` (radiance and age per pixel) as the display
-/// shows it: each pixel sharpened at strength `sharpen` ([`sharpened`], its 3×3
+/// shows it: each pixel sharpened at strength `sharpen` (`temporal::sharpened`, its 3×3
 /// neighbourhood read from the three rows around it, as `sharpened_image` does) when that
 /// is above 0, then tone-mapped; a row at a time on the current rayon pool.
 fn shown(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32) -> Picture {
@@ -47,27 +47,35 @@ fn shown(colour: &[[f32; 4]], size: (u32, u32), sharpen: f32) -> Picture {
 }
 
 /// One row of [`shown`] (`out`, RGBA) from the rows above it, its own and the one below.
+/// The 3×3 range of each pixel is the range of three column ranges, each column's taken
+/// once for the three pixels that read it ([`sharpened_within`]).
 #[inline(always)]
 fn shown_row([above, here, below]: [&[[f32; 4]]; 3], sharpen: f32, out: &mut [u8]) {
     let width = here.len();
+    let tap = |r: &[[f32; 4]], i: usize| Vec4::from_array(r[i]);
+    let column = |x: usize| {
+        let (a, h, b) = (tap(above, x), tap(here, x), tap(below, x));
+        (a.min(h).min(b), a.max(h).max(b))
+    };
+    // The column ranges of x − 1, x and x + 1 (edges repeated).
+    let mut columns = [column(0), column(0), column(1.min(width - 1))];
     for (x, pixel) in out.chunks_exact_mut(4).enumerate() {
         let c = if sharpen > 0.0 {
+            if x > 0 {
+                columns = [columns[1], columns[2], column((x + 1).min(width - 1))];
+            }
+            let lo = columns[0].0.min(columns[1].0).min(columns[2].0);
+            let hi = columns[0].1.max(columns[1].1).max(columns[2].1);
             let (left, right) = (x.saturating_sub(1), (x + 1).min(width - 1));
-            let tap = |r: &[[f32; 4]], i: usize| Vec4::from_array(r[i]);
-            let n = [
-                tap(above, left),
+            let cross = [
                 tap(above, x),
-                tap(above, right),
                 tap(here, left),
-                tap(here, x),
                 tap(here, right),
-                tap(below, left),
                 tap(below, x),
-                tap(below, right),
             ];
-            sharpened(&n, sharpen)
+            sharpened_within(tap(here, x), cross, (lo, hi), sharpen)
         } else {
-            Vec4::from_array(here[x])
+            tap(here, x)
         };
         for (channel, v) in pixel.iter_mut().zip([c.x, c.y, c.z]) {
             *channel = linear_to_srgb8_fast(v);
