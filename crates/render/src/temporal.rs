@@ -299,8 +299,9 @@ pub fn sharpened(n: &[Vec4; 9], k: f32) -> Vec4 {
 
 /// [`sharpened`] of the pixel `c` whose four neighbours are `[up, left, right, down]`, its
 /// neighbourhood's per-channel range `(lo, hi)` given: for a caller that takes the range
-/// from the column ranges neighbouring pixels share. The minimum and maximum of values that
-/// hold no NaN are the same in any order, and a history holds no NaN.
+/// from the column ranges neighbouring pixels share. The minimum and maximum of values
+/// without NaN (a history holds none) are the same in any order but for the sign of a zero,
+/// which the tone map after it does not see.
 #[inline]
 pub fn sharpened_within(
     c: Vec4,
