@@ -31,6 +31,8 @@ pub use build::BvhError;
 pub use gpu_node::{GPU_EMPTY, GPU_LEAF, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
 pub use top_level::{Bounds, TopLayout, TopLevel, Update, pad};
 pub use watertight::{T_MIN, TriangleVerts, WatertightRay};
+#[cfg(target_arch = "x86_64")]
+pub use wide::{X86Level, x86_level};
 
 use glam::{Vec3, Vec3A};
 use wide::Wide;

@@ -82,12 +82,14 @@ pub(crate) fn push_all_but_nearest(
     hits[last].1
 }
 
+/// The vector extensions a CPU pass is compiled for: the traversal's box tests here, and the
+/// CPU renderer's per-pixel passes (`steadyray-render-cpu`).
 #[cfg(target_arch = "x86_64")]
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum X86Level {
-    /// The portable lane loops (SSE).
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub enum X86Level {
+    /// The workspace's build (SSE2): the portable lane loops.
     Baseline,
-    /// The AVX2 box tests.
+    /// AVX2: the AVX2 box tests.
     Avx2,
     /// The same AVX2 code compiled with AVX-512 F and VL enabled. Its 32 vector registers
     /// hold all of the ray's constants, where with 16 the box test reloaded two of them
@@ -99,7 +101,7 @@ enum X86Level {
 /// library).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn x86_level() -> X86Level {
+pub fn x86_level() -> X86Level {
     use std::arch::is_x86_feature_detected as has;
     if !has!("avx2") {
         X86Level::Baseline

@@ -7,41 +7,18 @@
 //! warped refresh's passes, the display's sharpening and tone map, and the resolve's
 //! preparation.
 
-/// The vector extensions a pass is compiled for.
 #[cfg(target_arch = "x86_64")]
-#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
-enum Level {
-    /// The workspace's build (SSE2).
-    Baseline,
-    Avx2,
-    /// AVX2 with AVX-512 F and VL: 32 vector registers, and a float converts to an
-    /// unsigned index in one instruction.
-    Avx512,
-}
+use steadyray_accel::{X86Level, x86_level};
 
-/// The [`Level`] the passes run at: the best this CPU has, or a lower one a test forces.
+/// The [`X86Level`] the passes run at: the best this CPU has, or a lower one a test forces.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn level() -> Level {
+fn level() -> X86Level {
     #[cfg(test)]
-    if let Some(forced) = tests::forced().filter(|&forced| forced <= detected()) {
+    if let Some(forced) = tests::forced().filter(|&forced| forced <= x86_level()) {
         return forced;
     }
-    detected()
-}
-
-/// The best [`Level`] this CPU has (the feature checks are cached by the standard library).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn detected() -> Level {
-    use std::arch::is_x86_feature_detected as has;
-    if !has!("avx2") {
-        Level::Baseline
-    } else if has!("avx512f") && has!("avx512vl") {
-        Level::Avx512
-    } else {
-        Level::Avx2
-    }
+    x86_level()
 }
 
 /// Runs `pass` compiled for the best vector extensions this CPU has. `pass` should be an
@@ -52,10 +29,10 @@ pub(crate) fn best_compiled<R>(pass: impl FnOnce() -> R) -> R {
     #[cfg(target_arch = "x86_64")]
     match level() {
         // SAFETY: this CPU has AVX2, AVX-512 F and AVX-512 VL.
-        Level::Avx512 => return unsafe { avx512(pass) },
+        X86Level::Avx512 => return unsafe { avx512(pass) },
         // SAFETY: this CPU has AVX2.
-        Level::Avx2 => return unsafe { avx2(pass) },
-        Level::Baseline => {}
+        X86Level::Avx2 => return unsafe { avx2(pass) },
+        X86Level::Baseline => {}
     }
     pass()
 }
@@ -67,7 +44,8 @@ fn avx2<R>(pass: impl FnOnce() -> R) -> R {
     pass()
 }
 
-/// `pass` compiled for AVX-512 (see [`Level::Avx512`]).
+/// `pass` compiled for AVX-512 (32 vector registers, and a float converts to an unsigned
+/// index in one instruction).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,avx512f,avx512vl")]
 fn avx512<R>(pass: impl FnOnce() -> R) -> R {
@@ -76,7 +54,7 @@ fn avx512<R>(pass: impl FnOnce() -> R) -> R {
 
 #[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
-    use super::{Level, detected};
+    use super::{X86Level, x86_level};
     use crate::CpuRenderer;
     use std::sync::atomic::{AtomicU8, Ordering};
     use steadyray_render::{Presented, RenderSettings, Renderer, TemporalSettings};
@@ -85,10 +63,10 @@ mod tests {
     /// The level every pass runs at, while a test forces one (an index into LEVELS).
     static FORCED: AtomicU8 = AtomicU8::new(NOT_FORCED);
     const NOT_FORCED: u8 = u8::MAX;
-    const LEVELS: [Level; 3] = [Level::Baseline, Level::Avx2, Level::Avx512];
+    const LEVELS: [X86Level; 3] = [X86Level::Baseline, X86Level::Avx2, X86Level::Avx512];
 
     /// The level a test forces, if any.
-    pub(super) fn forced() -> Option<Level> {
+    pub(super) fn forced() -> Option<X86Level> {
         LEVELS
             .get(usize::from(FORCED.load(Ordering::Relaxed)))
             .copied()
@@ -139,9 +117,9 @@ mod tests {
     #[test]
     fn every_level_gives_the_same_bits() {
         let levels: Vec<usize> = (0..LEVELS.len())
-            .filter(|&i| LEVELS[i] <= detected())
+            .filter(|&i| LEVELS[i] <= x86_level())
             .collect();
-        let runs: Vec<(Level, Vec<u32>)> = levels
+        let runs: Vec<(X86Level, Vec<u32>)> = levels
             .iter()
             .map(|&i| {
                 FORCED.store(i as u8, Ordering::Relaxed);
