@@ -10,7 +10,7 @@ pub(crate) use geometry::{Geometry, GeometrySink};
 use crate::simd::best_compiled;
 use glam::Vec4;
 use rayon::prelude::*;
-use resolve::{Axis, Inputs, Prepared, Preparing, Range, Seen};
+use resolve::{Axis, Inputs, Prepared, PreparedRow, Preparing, Range, Seen};
 use steadyray_render::sampling::samples_for_pixel;
 use steadyray_render::surface_motion::SurfaceMove;
 use steadyray_render::temporal::{HistoryClock, TemporalFrame, sharpen_strength, sharpened_within};
@@ -97,6 +97,7 @@ pub(crate) struct History {
     prepared: Vec<Prepared>,
     ranges: Vec<Range>,
     seen: Vec<Seen>,
+    values: Vec<Vec4>,
     columns: Axis,
     rows: Axis,
     /// The history's radiance and age per pixel, and the frame pixel of the previous frame
@@ -130,6 +131,7 @@ impl History {
             prepared: Vec::new(),
             ranges: Vec::new(),
             seen: Vec::new(),
+            values: Vec::new(),
             columns: Axis::default(),
             rows: Axis::default(),
             colour: vec![[0.0; 4]; pixels],
@@ -153,6 +155,7 @@ impl History {
         self.prepared.resize(pixels, Prepared::default());
         self.ranges.resize(pixels, Range::default());
         self.seen.resize(pixels, Seen::default());
+        self.values.resize(pixels, Vec4::ZERO);
     }
 
     /// Accumulates the rendered frame (`low_size`, camera frame `camera` for the history's
@@ -174,11 +177,20 @@ impl History {
             .par_chunks_mut(low_w)
             .zip(self.ranges.par_chunks_mut(low_w))
             .zip(self.seen.par_chunks_mut(low_w))
+            .zip(self.values.par_chunks_mut(low_w))
             .enumerate()
-            .for_each(|(y, ((prepared, ranges), seen))| {
+            .for_each(|(y, (((prepared, ranges), seen), values))| {
                 best_compiled(
                     #[inline(always)]
-                    || preparing.row(y as u32, prepared, ranges, seen),
+                    || {
+                        let out = PreparedRow {
+                            prepared,
+                            ranges,
+                            seen,
+                            values,
+                        };
+                        preparing.row(y as u32, out)
+                    },
                 );
             });
         self.columns.fill(size.0, low_size.0, frame.anchor[0]);
@@ -188,6 +200,7 @@ impl History {
             prepared: &self.prepared,
             ranges: &self.ranges,
             seen: &self.seen,
+            values: &self.values,
             low_size,
             columns: &self.columns,
             rows: &self.rows,

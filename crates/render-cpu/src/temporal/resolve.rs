@@ -166,6 +166,8 @@ pub(crate) struct Inputs<'a> {
     pub prepared: &'a [Prepared],
     pub ranges: &'a [Range],
     pub seen: &'a [Seen],
+    /// Each frame pixel's [`centre_value`].
+    pub values: &'a [Vec4],
     pub low_size: (u32, u32),
     pub columns: &'a Axis,
     pub rows: &'a Axis,
@@ -202,15 +204,43 @@ fn finite(c: [f32; 3]) -> bool {
     c.iter().all(|v| v.is_finite())
 }
 
+/// A frame colour as the read at a history pixel's centre sums it ([`Inputs::at_centre`]):
+/// (r, g, b, 1), so that one sum of weighted values is both the weighted colour and the sum
+/// of the weights; zero where a channel is not finite, which adds +0 to both, as skipping
+/// the pixel would.
+#[inline]
+fn centre_value(c: [f32; 3]) -> Vec4 {
+    if finite(c) {
+        Vec4::new(c[0], c[1], c[2], 1.0)
+    } else {
+        Vec4::ZERO
+    }
+}
+
+/// One frame row of what [`Preparing::row`] makes.
+pub(crate) struct PreparedRow<'a> {
+    pub prepared: &'a mut [Prepared],
+    pub ranges: &'a mut [Range],
+    pub seen: &'a mut [Seen],
+    pub values: &'a mut [Vec4],
+}
+
 impl Preparing<'_> {
-    /// What the resolve needs of frame row `y`: each pixel's [`Prepared`], [`Range`] and
-    /// [`Seen`], four pixels at a time.
+    /// What the resolve needs of frame row `y`: each pixel's [`Prepared`], [`Range`],
+    /// [`Seen`] and centre value ([`centre_value`]), four pixels at a time.
     #[inline(always)]
-    pub fn row(&self, y: u32, prepared: &mut [Prepared], ranges: &mut [Range], seen: &mut [Seen]) {
+    pub fn row(&self, y: u32, out: PreparedRow<'_>) {
+        let PreparedRow {
+            prepared,
+            ranges,
+            seen,
+            values,
+        } = out;
         let start = (y * self.low_size.0) as usize;
         self.ranges(y, ranges);
-        for (k, (prepared, seen)) in prepared.chunks_mut(4).zip(seen.chunks_mut(4)).enumerate() {
-            self.four(start + 4 * k, prepared, seen);
+        let fours = prepared.chunks_mut(4).zip(seen.chunks_mut(4));
+        for (k, ((prepared, seen), values)) in fours.zip(values.chunks_mut(4)).enumerate() {
+            self.four(start + 4 * k, prepared, seen, values);
         }
     }
 
@@ -218,7 +248,13 @@ impl Preparing<'_> {
     /// back per pixel, then projected and measured four lanes at once (each lane's
     /// arithmetic is the scalar's, so it rounds alike).
     #[inline(always)]
-    fn four(&self, first: usize, prepared: &mut [Prepared], seen: &mut [Seen]) {
+    fn four(
+        &self,
+        first: usize,
+        prepared: &mut [Prepared],
+        seen: &mut [Seen],
+        values: &mut [Vec4],
+    ) {
         let records = &self.low_geometry[first..first + prepared.len()];
         // Component-major: q[c][lane].
         let mut q = [[0.0f32; 4]; 4];
@@ -263,15 +299,17 @@ impl Preparing<'_> {
             }
             None => (None, distance4(q_before, [0.0; 3])),
         };
-        for (lane, ((p, s), g)) in prepared.iter_mut().zip(seen).zip(records).enumerate() {
+        let pixels = prepared.iter_mut().zip(seen).zip(values).zip(records);
+        for (lane, (((p, s), value), g)) in pixels.enumerate() {
             let motion = match motion {
                 Some((mx, my, ok)) if existed[lane] && ok.test(lane) => Some([mx[lane], my[lane]]),
                 _ => None,
             };
+            *value = centre_value(self.low[first + lane]);
             *p = Prepared {
                 motion,
                 tag: g.tag,
-                finite: finite(self.low[first + lane]),
+                finite: value.w != 0.0,
             };
             let id = g.tag & ID_MASK;
             *s = Seen {
@@ -427,32 +465,27 @@ impl Inputs<'_> {
     /// The frame at the centre of a history pixel where frame pixel (sx, sy) lands, in a
     /// moving frame: the finite colours of the 3×3 frame pixels around it (those inside the
     /// frame, row by row), each weighted by the `centre_weight`s of its samples' centroid
-    /// (`column` and `row`: the landed axis tables), over the sum of the weights. Pixels
-    /// whose weight is 0 add nothing and are skipped (the GPU adds their +0: the same bits),
-    /// which leaves four of the nine at most.
+    /// (`column` and `row`: the landed axis tables), over the sum of the weights. A pixel
+    /// whose weight is 0, or whose colour is not finite ([`centre_value`]), adds +0 to the
+    /// sums, as on the GPU; rows and columns whose weights are all 0 are skipped, which
+    /// leaves four of the nine at most. The weights are summed in the values' fourth lane.
     #[inline]
     fn at_centre(&self, sx: u32, sy: u32, column: &Centre, row: &Centre) -> [f32; 3] {
         let low_w = self.low_size.0;
         let mut sum = Vec4::ZERO;
-        let mut total = 0.0f32;
         for k in (0..3).filter(|k| row.live & 1 << k != 0) {
             let ny = (sy + k as u32).wrapping_sub(1);
             for j in (0..3).filter(|j| column.live & 1 << j != 0) {
                 let nx = (sx + j as u32).wrapping_sub(1);
-                let i = (ny * low_w + nx) as usize;
                 // The anchor's weights for a pixel of one sample, the centre's for more.
                 let at = usize::from(self.count_at(nx, ny) >= 2.0);
                 let w = column.w[at][j] * row.w[at][k];
-                if w == 0.0 || !self.prepared[i].finite {
-                    continue;
-                }
-                let [r, g, b] = self.low[i];
-                sum += w * Vec4::new(r, g, b, 0.0);
-                total += w;
+                sum += w * self.values[(ny * low_w + nx) as usize];
             }
         }
-        if total > 0.0 {
-            [sum.x / total, sum.y / total, sum.z / total]
+        if sum.w > 0.0 {
+            let c = sum / sum.w;
+            [c.x, c.y, c.z]
         } else {
             self.low[(sy * low_w + sx) as usize]
         }
