@@ -467,8 +467,9 @@ impl Inputs<'_> {
     /// frame, row by row), each weighted by the `centre_weight`s of its samples' centroid
     /// (`column` and `row`: the landed axis tables), over the sum of the weights. A pixel
     /// whose weight is 0, or whose colour is not finite ([`centre_value`]), adds +0 to the
-    /// sums, as on the GPU; rows and columns whose weights are all 0 are skipped, which
-    /// leaves four of the nine at most. The weights are summed in the values' fourth lane.
+    /// sums: the same bits as the GPU, which adds a zero weight's +0 and skips a colour that
+    /// is not finite. Rows and columns whose weights are all 0 are skipped, which leaves four
+    /// of the nine at most. The weights are summed in the values' fourth lane.
     #[inline]
     fn at_centre(&self, sx: u32, sy: u32, column: &Centre, row: &Centre) -> [f32; 3] {
         let low_w = self.low_size.0;
