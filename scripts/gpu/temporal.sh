@@ -9,12 +9,13 @@
 #   3. paper, refresh, paper-reversed, refresh2: the corridor under the real clock at the
 #      paper's band, at one refresh, at the paper's band again with the history's run first
 #      (the GPU's clocks follow its load), and at two refreshes, each controller without and
-#      with the history, displayed FLIP,
+#      with the history and its warped refreshes (`--temporal both --warp`, the issue's
+#      comparison as the CPU's benches make it), displayed FLIP,
 #      the screen videos (references at S = REF_SPP), and their JOD (scripts/jod/jod.py)
 #      when python3 has torch and pycvvdp (carry the wheels cvvdp, ffmpeg-python and future,
 #      installed with --target and PYTHONPATH: see the device recipe);
-#   4. paper-warp: the paper's band with the history and warped refreshes (--warp), to set
-#      beside paper's runs (docs/temporal.md, "Warped refreshes").
+#   4. paper-nowarp: the paper's band with the history and no warps, to set beside the
+#      device sessions before the warps (docs/subjective.md).
 # Small results (summaries, tables, frames.csv, jod.json, the still view's figures) are packed
 # into OUT/results.tar.gz after every stage, so a run cut short still returns what it did.
 #
@@ -118,24 +119,25 @@ run_bench() {
     pack
 }
 paper=(--tmin 15 --tmax 20 --controllers predictive)
+warp=(--temporal both --warp)
 # The GPU's clocks follow its load, so the run that comes second may start on other clocks:
 # `paper-reversed` runs the paper's band again with the history first.
-for stage in ${STAGES:-pass still paper paper-warp refresh paper-reversed refresh2}; do
+for stage in ${STAGES:-pass still paper refresh paper-reversed refresh2 paper-nowarp}; do
     case $stage in
         pass) left 30 pass && stage_pass && pack ;;
         still) left 40 still && stage_still && pack ;;
-        paper) left 150 paper && run_bench paper "${paper[@]}" --temporal both ;;
-        paper-warp) left 90 paper-warp &&
-            run_bench paper-warp "${paper[@]}" --temporal on --warp ;;
+        paper) left 150 paper && run_bench paper "${paper[@]}" "${warp[@]}" ;;
         refresh) left 200 refresh &&
             run_bench refresh --band refresh --controllers "${REFRESH_CONTROLLERS:-hysteresis,predictive}" \
-                --temporal both ;;
+                "${warp[@]}" ;;
         paper-reversed) left 160 paper-reversed &&
-            run_bench paper-history-first "${paper[@]}" --temporal on &&
+            run_bench paper-history-first "${paper[@]}" --temporal on --warp &&
             run_bench paper-plain-second "${paper[@]}" --temporal off ;;
         refresh2) left 110 refresh2 &&
-            run_bench refresh2 --band refresh:2 --controllers predictive --temporal both ;;
-        *) echo "unknown stage $stage (pass, still, paper, paper-warp, refresh, paper-reversed, refresh2)"
+            run_bench refresh2 --band refresh:2 --controllers predictive "${warp[@]}" ;;
+        paper-nowarp) left 90 paper-nowarp &&
+            run_bench paper-nowarp "${paper[@]}" --temporal on ;;
+        *) echo "unknown stage $stage (pass, still, paper, refresh, paper-reversed, refresh2, paper-nowarp)"
             exit 2 ;;
     esac
 done
