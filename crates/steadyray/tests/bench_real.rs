@@ -284,3 +284,52 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
         fixed["displayed_flip_mean"]
     );
 }
+
+/// With warped refreshes, a band of two refreshes a frame leaves room for the warp that
+/// shows the refresh between two frames, its cost measured before the runs; a band of one
+/// refresh has no refresh between frames and leaves none.
+#[test]
+fn a_warped_band_leaves_room_for_the_warps_between_frames() {
+    let out = scratch("warped-band");
+    let run = |band: &str| -> Value {
+        let output = Command::new(BIN)
+            .args([
+                "bench",
+                "--backend",
+                "cpu",
+                "--width",
+                "32",
+                "--height",
+                "18",
+            ])
+            .args(["--clock", "real", "--duration", "0.1", "--warmup", "1"])
+            .args(["--controllers", "fixed", "--no-best-fixed"])
+            .args(["--temporal", "on", "--warp", "--band", band, "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(output.status.success(), "{stderr}");
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+    };
+    let period = 1000.0 / 60.0;
+    let summary = run("refresh:2");
+    let aligned = &summary["aligned_band"];
+    assert_eq!(aligned["refreshes"], 2);
+    let hand_over = aligned["hand_over_ms"].as_f64().unwrap();
+    let warp = aligned["warp_ms"].as_f64().unwrap();
+    assert!(warp > 0.0 && warp < period, "{warp}");
+    let band = summary["band_ms"].as_array().unwrap();
+    let (tmin, tmax) = (band[0].as_f64().unwrap(), band[1].as_f64().unwrap());
+    assert!(
+        (tmax - (2.0 * period * 0.95 - hand_over - warp)).abs() < 1e-9,
+        "{tmax} {hand_over} {warp}"
+    );
+    assert!(
+        (tmax - tmin - 0.2 * 2.0 * period).abs() < 1e-9,
+        "{tmin} {tmax}"
+    );
+    let summary = run("refresh");
+    assert_eq!(summary["aligned_band"]["warp_ms"], 0.0);
+    std::fs::remove_dir_all(&out).unwrap();
+}

@@ -65,8 +65,9 @@ pub struct BenchArgs {
     pub tmax: f64,
     /// With --clock real: `refresh` derives the band from the display instead of --tmin and
     /// --tmax: render times whose frames, handed over, make every refresh (`refresh:M`:
-    /// every M-th), with the hand-over measured before the runs (see
-    /// `steadyray_display::aligned_band`).
+    /// every M-th), with the hand-over measured before the runs; with --warp and M of 2 or
+    /// more the band also leaves room for the M − 1 warped refreshes after each frame, their
+    /// cost measured before the runs too (see `steadyray_display::aligned_band`).
     #[arg(long, value_name = "refresh[:M]", conflicts_with_all = ["tmin", "tmax"])]
     pub band: Option<RefreshBand>,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
@@ -206,6 +207,29 @@ fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) -> R
         }
     }
     steadyray_display::stats::quantile(&times, 0.5).context("no frame to measure the hand-over")
+}
+
+/// The median cost of a warped refresh, ms: `frames` frames at the path's start at quality
+/// `q` accumulated into a history, each handed over and then warped to the camera
+/// `period_s` later, after as many not measured; the temporal mode is off again afterwards.
+fn measure_warp(
+    source: &mut dyn FrameSource,
+    q: Quality,
+    frames: u32,
+    period_s: f64,
+) -> Result<f64> {
+    source.set_temporal(true)?;
+    let mut times = Vec::new();
+    for i in 0..2 * frames {
+        source.frame(source::PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
+        source.hand_over()?;
+        let ms = source.warp(period_s, false)?.ms;
+        if i >= frames {
+            times.push(ms);
+        }
+    }
+    source.set_temporal(false)?;
+    steadyray_display::stats::quantile(&times, 0.5).context("no frame to measure the warp")
 }
 
 /// The real clock's settings, checked.
@@ -434,15 +458,29 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         (Some(_), None, _) => bail!("--band refresh needs --clock real"),
         (Some(_), Some(_), None) => bail!("the hand-over was not measured"),
         (Some(choice), Some(options), Some(hand_over_ms)) => {
-            let (tmin, tmax) = aligned_band(&options.display, choice.multiple, hand_over_ms)?;
+            // Warped refreshes between frames run on the same machine as the frames.
+            let warp_ms = if args.warp && choice.multiple > 1 {
+                let period_s = options.display.period_ms() / 1000.0;
+                measure_warp(source.as_mut(), start, args.warmup.max(5), period_s)?
+            } else {
+                0.0
+            };
+            let (tmin, tmax) =
+                aligned_band(&options.display, choice.multiple, hand_over_ms, warp_ms)?;
+            let warps = if warp_ms > 0.0 {
+                format!(", {} warp(s) of {warp_ms:.2} ms", choice.multiple - 1)
+            } else {
+                String::new()
+            };
             eprintln!(
-                "bench: --band {choice}: hand-over {hand_over_ms:.2} ms (median at the start quality), band [{tmin:.2}, {tmax:.2}] ms"
+                "bench: --band {choice}: hand-over {hand_over_ms:.2} ms{warps} (medians at the start quality), band [{tmin:.2}, {tmax:.2}] ms"
             );
             (
                 Band::new(tmin, tmax)?,
                 Some(report::AlignedBand {
                     refreshes: choice.multiple,
                     hand_over_ms,
+                    warp_ms,
                 }),
             )
         }
@@ -856,7 +894,7 @@ mod tests {
         };
         let c = Perceptual::new(setup, params).unwrap();
         // It starts at the longest frame time: three refreshes.
-        let (tmin, tmax) = aligned_band(&display, 3, 1.6).unwrap();
+        let (tmin, tmax) = aligned_band(&display, 3, 1.6, 0.0).unwrap();
         assert!((c.band().tmin_ms() - tmin).abs() < 1e-9);
         assert!((c.band().tmax_ms() - tmax).abs() < 1e-9);
     }

@@ -66,6 +66,9 @@ pub struct AlignedBand {
     pub refreshes: u32,
     /// The measured hand-over the band leaves room for, ms.
     pub hand_over_ms: f64,
+    /// The measured warped refresh the band leaves room for after each frame, once per
+    /// refresh between two frames, ms (0 without --warp or at one refresh a frame).
+    pub warp_ms: f64,
 }
 
 #[derive(Serialize)]

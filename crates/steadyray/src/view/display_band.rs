@@ -58,8 +58,9 @@ impl DisplayBand {
             return None;
         }
         let median = quantile(&self.hand_over_ms, 0.5)?;
+        // The window shows no warped refreshes: nothing else shares the frame interval.
         Some(
-            aligned_band(&self.display, self.multiple, median)
+            aligned_band(&self.display, self.multiple, median, 0.0)
                 .map(|(tmin_ms, tmax_ms)| AlignedBand {
                     tmin_ms,
                     tmax_ms,
