@@ -27,6 +27,24 @@ fn bench(args: &[&str], out: &Path) -> Output {
         .expect("cannot run steadyray")
 }
 
+/// A bench of the CPU renderer at 32 × 18 under the real clock, 0.1 s after one warm-up
+/// frame: the rest of the arguments are the caller's.
+fn tiny_cpu_bench() -> Command {
+    let mut command = Command::new(BIN);
+    command
+        .args([
+            "bench",
+            "--backend",
+            "cpu",
+            "--width",
+            "32",
+            "--height",
+            "18",
+        ])
+        .args(["--clock", "real", "--duration", "0.1", "--warmup", "1"]);
+    command
+}
+
 /// frames.csv's rows of one controller: (tp_ms + warp_ms, the frame's time on the display;
 /// hand_over_ms, start_ms, visible_ms).
 fn rows(out: &Path, controller: &str) -> Vec<[f64; 4]> {
@@ -200,18 +218,8 @@ fn bad_display_settings_are_clear_errors_and_write_nothing() {
 fn video_and_displayed_quality_on_the_cpu_renderer() {
     let (out, video) = (scratch("video-out"), scratch("video"));
     let run = || {
-        let output = Command::new(BIN)
+        let output = tiny_cpu_bench()
             .current_dir(std::env::temp_dir())
-            .args([
-                "bench",
-                "--backend",
-                "cpu",
-                "--width",
-                "32",
-                "--height",
-                "18",
-            ])
-            .args(["--clock", "real", "--duration", "0.1", "--warmup", "1"])
             .args([
                 "--controllers",
                 "fixed",
@@ -292,17 +300,7 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
 fn a_warped_band_leaves_room_for_the_warps_between_frames() {
     let out = scratch("warped-band");
     let run = |band: &str| -> Value {
-        let output = Command::new(BIN)
-            .args([
-                "bench",
-                "--backend",
-                "cpu",
-                "--width",
-                "32",
-                "--height",
-                "18",
-            ])
-            .args(["--clock", "real", "--duration", "0.1", "--warmup", "1"])
+        let output = tiny_cpu_bench()
             .args(["--controllers", "fixed", "--no-best-fixed"])
             .args(["--temporal", "on", "--warp", "--band", band, "--out"])
             .arg(&out)
