@@ -209,9 +209,10 @@ fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) -> R
     steadyray_display::stats::quantile(&times, 0.5).context("no frame to measure the hand-over")
 }
 
-/// The median cost of a warped refresh, ms: `frames` frames at the path's start at quality
-/// `q` accumulated into a history, each handed over and then warped to the camera
-/// `period_s` later, after as many not measured; the temporal mode is off again afterwards.
+/// The median cost of a warped refresh, ms: `frames` frames at quality `q` from the path's
+/// start, one refresh (`period_s`) apart, accumulated into a history (moving, so that each
+/// resamples it, as in a run), each handed over and then warped to the camera of the next
+/// refresh, after as many not measured; the temporal mode is off again afterwards.
 fn measure_warp(
     source: &mut dyn FrameSource,
     q: Quality,
@@ -221,9 +222,11 @@ fn measure_warp(
     source.set_temporal(true)?;
     let mut times = Vec::new();
     for i in 0..2 * frames {
-        source.frame(source::PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
+        let t_s = f64::from(i) * period_s;
+        let index = i as usize;
+        source.frame(source::PathPoint::Time { index, t_s }, q)?;
         source.hand_over()?;
-        let ms = source.warp(period_s, false)?.ms;
+        let ms = source.warp(t_s + period_s, false)?.ms;
         if i >= frames {
             times.push(ms);
         }
