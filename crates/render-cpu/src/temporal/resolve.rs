@@ -18,7 +18,8 @@ use steadyray_render::temporal::{
 };
 use steadyray_scene::camera::CameraFrame;
 
-/// What the resolve needs of one frame pixel besides its colour and record.
+/// What the resolve needs of one frame pixel besides its colour, record and
+/// [`centre_value`] (whose fourth lane says whether the colour is finite).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Prepared {
     /// Where its record's point was in the previous frame minus where it is now, in history
@@ -26,8 +27,6 @@ pub(crate) struct Prepared {
     motion: Option<[f32; 2]>,
     /// Its record's tag (whose flags set the pixel's cap).
     tag: u32,
-    /// Whether its colour is finite.
-    finite: bool,
 }
 
 /// The per-channel range of the finite colours of a frame pixel's 3×3 neighbourhood (those
@@ -306,11 +305,7 @@ impl Preparing<'_> {
                 _ => None,
             };
             *value = centre_value(self.low[first + lane]);
-            *p = Prepared {
-                motion,
-                tag: g.tag,
-                finite: value.w != 0.0,
-            };
+            *p = Prepared { motion, tag: g.tag };
             let id = g.tag & ID_MASK;
             *s = Seen {
                 q: [q_before[0][lane], q_before[1][lane], q_before[2][lane]],
@@ -403,7 +398,7 @@ impl Inputs<'_> {
             let (sx, sy) = if landed { (lx, ly) } else { (cx, cy) };
             *source = sy * low_w + sx;
             let sample = &self.prepared[*source as usize];
-            let current_ok = sample.finite;
+            let current_ok = self.values[*source as usize].w != 0.0;
             let c = if landed && !frame.still && current_ok {
                 self.at_centre(
                     sx,
