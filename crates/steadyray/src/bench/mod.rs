@@ -195,24 +195,38 @@ impl std::fmt::Display for RefreshBand {
     }
 }
 
-/// The median hand-over cost of `frames` frames at the path's start at quality `q`, ms,
-/// after as many frames not measured (the first frames' buffers are still being allocated).
-fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) -> Result<f64> {
+/// The median of `measure(i)` over the calls i = `frames` to 2 · `frames` − 1, after as
+/// many not kept (the first frames' buffers are still being allocated); `what` names it
+/// in the error when nothing was measured.
+fn median_after_warm_up(
+    frames: u32,
+    what: &str,
+    mut measure: impl FnMut(u32) -> Result<f64>,
+) -> Result<f64> {
     let mut times = Vec::new();
     for i in 0..2 * frames {
-        source.frame(source::PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
-        let ms = source.hand_over()?.ms;
+        let ms = measure(i)?;
         if i >= frames {
             times.push(ms);
         }
     }
-    steadyray_display::stats::quantile(&times, 0.5).context("no frame to measure the hand-over")
+    steadyray_display::stats::quantile(&times, 0.5)
+        .with_context(|| format!("no frame to measure the {what}"))
 }
 
-/// The median cost of a warped refresh, ms: `frames` frames at quality `q` from the path's
-/// start, one refresh (`period_s`) apart, accumulated into a history (moving, so that each
-/// resamples it, as in a run), each handed over and then warped to the camera of the next
-/// refresh, after as many not measured; the temporal mode is off again afterwards.
+/// The median hand-over cost of `frames` frames at the path's start at quality `q`, ms
+/// ([`median_after_warm_up`]).
+fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) -> Result<f64> {
+    median_after_warm_up(frames, "hand-over", |_| {
+        source.frame(source::PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
+        Ok(source.hand_over()?.ms)
+    })
+}
+
+/// The median cost of a warped refresh, ms ([`median_after_warm_up`]): frames at quality
+/// `q` from the path's start, one refresh (`period_s`) apart, accumulated into a history
+/// (moving, so that each resamples it, as in a run), each handed over and then warped to
+/// the camera of the next refresh; the temporal mode is off again afterwards.
 fn measure_warp(
     source: &mut dyn FrameSource,
     q: Quality,
@@ -220,19 +234,15 @@ fn measure_warp(
     period_s: f64,
 ) -> Result<f64> {
     source.set_temporal(true)?;
-    let mut times = Vec::new();
-    for i in 0..2 * frames {
+    let ms = median_after_warm_up(frames, "warp", |i| {
         let t_s = f64::from(i) * period_s;
         let index = i as usize;
         source.frame(source::PathPoint::Time { index, t_s }, q)?;
         source.hand_over()?;
-        let ms = source.warp(t_s + period_s, false)?.ms;
-        if i >= frames {
-            times.push(ms);
-        }
-    }
+        Ok(source.warp(t_s + period_s, false)?.ms)
+    })?;
     source.set_temporal(false)?;
-    steadyray_display::stats::quantile(&times, 0.5).context("no frame to measure the warp")
+    Ok(ms)
 }
 
 /// The real clock's settings, checked.
