@@ -480,13 +480,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             };
             let (tmin, tmax) =
                 aligned_band(&options.display, choice.multiple, hand_over_ms, warp_ms)?;
-            let warps = if warp_ms > 0.0 {
-                format!(", {} warp(s) of {warp_ms:.2} ms", choice.multiple - 1)
+            let costs = if warp_ms > 0.0 {
+                let warps = choice.multiple - 1;
+                format!(
+                    "hand-over {hand_over_ms:.2} ms, {warps} warp(s) of {warp_ms:.2} ms (medians"
+                )
             } else {
-                String::new()
+                format!("hand-over {hand_over_ms:.2} ms (median")
             };
             eprintln!(
-                "bench: --band {choice}: hand-over {hand_over_ms:.2} ms{warps} (medians at the start quality), band [{tmin:.2}, {tmax:.2}] ms"
+                "bench: --band {choice}: {costs} at the start quality), band [{tmin:.2}, {tmax:.2}] ms"
             );
             (
                 Band::new(tmin, tmax)?,
