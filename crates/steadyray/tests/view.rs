@@ -25,7 +25,7 @@ macro_rules! skip {
             panic!("STEADYRAY_REQUIRE_GPU=1 but {why}");
         }
         eprintln!("SKIPPED: {why}");
-        return;
+        return Default::default();
     }};
 }
 
@@ -162,13 +162,14 @@ fn window_args() -> Vec<String> {
 /// Runs `view --frames 30 --screenshot` on `backend` with the temporal arguments `flag`
 /// (none: the default) and checks the screenshot against a `render` of the same view; with
 /// `temporal` (what `flag` must amount to), both accumulate the 30 frames of the still view
-/// (`render --temporal 30`) and must agree as well.
-fn window_matches_render(backend: &str, flag: &[&str], temporal: bool) {
+/// (`render --temporal 30`) and must agree as well. Returns the view's summary (none when
+/// skipped).
+fn window_matches_render(backend: &str, flag: &[&str], temporal: bool) -> Option<Value> {
     let xvfb = match Xvfb::start() {
         Ok(x) => x,
         Err(why) => skip!("no X server for the window test: {why}"),
     };
-    let dir = scratch(&format!("{backend}-{temporal}"));
+    let dir = scratch(&format!("{backend}-{temporal}-{}", flag.join("")));
     let shot = dir.join("view.png");
     let reference = dir.join("render.png");
     let window = window_args();
@@ -300,6 +301,7 @@ fn window_matches_render(backend: &str, flag: &[&str], temporal: bool) {
         inside_err as f64 / inside as f64 > 10.0,
         "the HUD's area looks like the plain render: no HUD drawn?"
     );
+    Some(summary)
 }
 
 /// On a GPU the temporal mode starts off (`--temporal auto`, the default).
@@ -323,6 +325,30 @@ fn gpu_window_shows_the_temporal_history() {
 #[test]
 fn cpu_window_shows_the_temporal_history() {
     window_matches_render("cpu", &[], true);
+}
+
+/// `--warp` at two refreshes a frame shows one warped refresh after every frame, and the run
+/// ends on the last frame's: the still camera's warp is the history's picture itself.
+fn window_shows_warped_refreshes_between_frames(backend: &str) {
+    let flag = ["--band", "refresh:2", "--warp"];
+    let Some(summary) = window_matches_render(backend, &flag, true) else {
+        return;
+    };
+    assert_eq!(summary["warped_refreshes"], 30, "{summary}");
+    assert!(
+        summary["warp_ms"]["mean"].as_f64().unwrap() > 0.0,
+        "{summary}"
+    );
+}
+
+#[test]
+fn cpu_window_shows_warped_refreshes_between_frames() {
+    window_shows_warped_refreshes_between_frames("cpu");
+}
+
+#[test]
+fn gpu_window_shows_warped_refreshes_between_frames() {
+    window_shows_warped_refreshes_between_frames("gpu");
 }
 
 #[test]

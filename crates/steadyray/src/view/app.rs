@@ -4,7 +4,7 @@
 
 use super::camera::{FlyCamera, Sweep};
 use super::capture::Screenshot;
-use super::display_band::DisplayBand;
+use super::display_band::{AlignedBand, DisplayBand};
 use super::frames::{LiveRenderer, Upload};
 use super::history::{FrameHistory, Sample, Spread};
 use super::hud::{self, HudChange, HudEdit, HudFacts};
@@ -17,6 +17,7 @@ use super::{Content, LiveSetup, Plan};
 use crate::backend::ADAPTER_ENV;
 use crate::cli::BackendChoice;
 use anyhow::{Context, Result, anyhow};
+use glam::Vec3;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -138,19 +139,54 @@ struct Live {
     /// renderer's history has (None: off).
     temporal: bool,
     history: Option<(u32, u32)>,
+    /// Refreshes shown warped after each frame in the temporal mode (`--warp`), and how
+    /// many of the last frame's are still to show.
+    warps: u32,
+    warps_due: u32,
+    /// The last frame's motion on screen, °/s (the HUD shows it through the warps too).
+    speed_deg_s: Option<f64>,
 }
 
 impl Live {
     /// Gives the renderer the history the temporal mode asks for: `full` pixels (a resize
-    /// starts a new one), or none.
+    /// starts a new one), or none. A new history or none leaves nothing to warp.
     fn sync_history(&mut self, full: (u32, u32)) -> Result<()> {
         let want = self.temporal.then_some(full);
         if want != self.history {
             let settings = want.map(|(width, height)| TemporalSettings { width, height });
             self.renderer.set_temporal(settings)?;
             self.history = want;
+            self.warps_due = 0;
         }
         Ok(())
+    }
+
+    /// Moves the camera and the scene `dt_s` on (input, sweep or keyed path; none while
+    /// `paused`) and returns the camera and scene time to show.
+    fn advance(
+        &mut self,
+        dt_s: f32,
+        look: (f32, f32),
+        movement: Vec3,
+        paused: bool,
+    ) -> (Camera, f64) {
+        if !paused {
+            self.camera.look(look);
+            self.camera.translate(movement, self.speed * dt_s);
+            self.scene_time_s =
+                (self.scene_time_s + f64::from(dt_s)).rem_euclid(self.scene_duration_s);
+            match &self.keyed_path {
+                Some((path, base)) if self.sweep.on => {
+                    let camera = path.camera_at_time(base, self.scene_time_s);
+                    self.camera = FlyCamera::from_camera(&camera);
+                }
+                _ => self.sweep.advance(&mut self.camera, dt_s),
+            }
+        }
+        match &mut self.path_clock {
+            Some(clock) => clock.next(f64::from(dt_s), paused),
+            None => (self.camera.camera(), self.scene_time_s),
+        }
     }
 }
 
@@ -192,8 +228,11 @@ pub struct Summary {
     controller: Option<&'static str>,
     /// Render time over the whole run, ms.
     render_ms: Option<Spread>,
-    /// Presentation interval over the whole run, ms.
+    /// Presentation interval between frames over the whole run, ms.
     present_ms: Option<Spread>,
+    /// Refreshes shown warped (`--warp`), and their cost, ms.
+    warped_refreshes: usize,
+    warp_ms: Option<Spread>,
     in_band_pct: Option<f64>,
     last_frame: [u32; 2],
     /// The HUD's area in window pixels (x0, y0, x1, y1) on the last frame, if shown.
@@ -227,6 +266,8 @@ struct Running {
     /// Every frame's render time and presentation interval, for the summary.
     all_render_ms: Vec<f64>,
     all_present_ms: Vec<f64>,
+    /// Every warped refresh's cost, ms.
+    all_warp_ms: Vec<f64>,
     frames_limit: Option<u32>,
     screenshot: Option<PathBuf>,
     /// F12 was pressed: capture the next frame.
@@ -408,6 +449,9 @@ impl Running {
                         .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
                     temporal: plan.temporal.starts_on(gpu),
                     history: None,
+                    warps: plan.warps,
+                    warps_due: 0,
+                    speed_deg_s: None,
                 };
                 let mode = Mode::Live(Box::new(live));
                 (
@@ -473,7 +517,7 @@ impl Running {
                     .current_monitor()
                     .and_then(|m| m.refresh_rate_millihertz())
                     .map(|mhz| f64::from(mhz) / 1000.0);
-                Some(DisplayBand::new(multiple, refresh_hz)?)
+                Some(DisplayBand::new(multiple, refresh_hz, plan.warps > 0)?)
             }
             None => None,
         };
@@ -513,6 +557,7 @@ impl Running {
             last_size: (0, 0),
             all_render_ms: Vec::new(),
             all_present_ms: Vec::new(),
+            all_warp_ms: Vec::new(),
             frames_limit: plan.frames,
             screenshot: plan.screenshot,
             shot_requested: false,
@@ -628,88 +673,94 @@ impl Running {
         let paused = self.paused;
         let look = self.input.take_look();
         let movement = self.input.movement();
+        let mut warp_ms = None;
+        let mut warps_due = 0;
+        let warps_per_frame = match &self.mode {
+            Mode::Live(live) => live.warps,
+            Mode::Playback(_) => 0,
+        };
         let (image, sample, playback, (speed_deg_s, target_ms)) = match &mut self.mode {
             Mode::Live(live) => {
-                if !paused {
-                    live.camera.look(look);
-                    live.camera.translate(movement, live.speed * dt_s);
-                    live.scene_time_s =
-                        (live.scene_time_s + f64::from(dt_s)).rem_euclid(live.scene_duration_s);
-                    match &live.keyed_path {
-                        Some((path, base)) if live.sweep.on => {
-                            let camera = path.camera_at_time(base, live.scene_time_s);
-                            live.camera = FlyCamera::from_camera(&camera);
-                        }
-                        _ => live.sweep.advance(&mut live.camera, dt_s),
-                    }
-                }
-                let (camera, scene_time_s) = match &mut live.path_clock {
-                    Some(clock) => clock.next(f64::from(dt_s), paused),
-                    None => (live.camera.camera(), live.scene_time_s),
-                };
+                let (camera, scene_time_s) = live.advance(dt_s, look, movement, paused);
                 let q = live.control.quality();
                 let full = full_size(self.screen.size(), live.pixel_size);
                 live.sync_history(full)?;
-                let (width, height) = scaled(full, q.scale);
-                let settings = RenderSettings {
-                    width,
-                    height,
-                    spp: q.spp,
-                    max_depth: q.depth,
-                };
-                // The previous frame's present work first: the render call's wall time is
-                // then its own, a check on the GPU timestamps.
-                if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
-                    return Err(anyhow!("waiting for the GPU failed: {e}"));
-                }
-                let stats = live.renderer.render(&camera, scene_time_s, &settings)?;
-                let (render_ms, source) = controller_time(&stats);
-                if source != TimingSource::GpuTimestamps
-                    && self.timing.starts_with("GPU timestamps")
-                {
-                    log::warn!(
-                        "GPU timestamps say {:.2} ms but the render call took {:.2} ms: the \
-                         controller uses the wall clock from now on",
-                        stats.render_ms,
-                        stats.wall_ms
-                    );
-                    self.timing = "GPU wall clock".into();
-                }
-                let render_ms = if self.timing.starts_with("GPU wall clock") {
-                    stats.wall_ms
+                if live.warps_due > 0 {
+                    // A refresh without a new frame: the last one warped to this camera.
+                    live.warps_due -= 1;
+                    warps_due = live.warps_due;
+                    let facts = (live.speed_deg_s, live.control.target_frame_ms());
+                    let warping = Instant::now();
+                    let image = live.renderer.warped(&camera, &self.device, &self.queue)?;
+                    warp_ms = Some(warping.elapsed().as_secs_f64() * 1e3);
+                    (image, None, None, facts)
                 } else {
-                    render_ms
-                };
-                // The motion on screen since the last frame (outside the render's time).
-                let motion = live.motion.next(Shot {
-                    camera,
-                    time_s: t_s,
-                    world_s: live.scene_time_s,
-                })?;
-                let report = FrameReport {
-                    tp_ms: render_ms,
-                    rays_per_depth: stats.rays.per_depth.clone(),
-                    shadow_rays: stats.rays.shadow,
-                    rays_stopped: Some(stats.rays.stopped),
-                    pixels: settings.pixels(),
-                    quality: q,
-                    speed_deg_s: motion.mean_deg_s,
-                };
-                if let Err(e) = live.control.observe(&report) {
-                    log::warn!("the controller refused a frame report: {e}");
+                    let (width, height) = scaled(full, q.scale);
+                    let settings = RenderSettings {
+                        width,
+                        height,
+                        spp: q.spp,
+                        max_depth: q.depth,
+                    };
+                    // The previous frame's present work first: the render call's wall time is
+                    // then its own, a check on the GPU timestamps.
+                    if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
+                        return Err(anyhow!("waiting for the GPU failed: {e}"));
+                    }
+                    let stats = live.renderer.render(&camera, scene_time_s, &settings)?;
+                    let (render_ms, source) = controller_time(&stats);
+                    if source != TimingSource::GpuTimestamps
+                        && self.timing.starts_with("GPU timestamps")
+                    {
+                        log::warn!(
+                            "GPU timestamps say {:.2} ms but the render call took {:.2} ms: the \
+                         controller uses the wall clock from now on",
+                            stats.render_ms,
+                            stats.wall_ms
+                        );
+                        self.timing = "GPU wall clock".into();
+                    }
+                    let render_ms = if self.timing.starts_with("GPU wall clock") {
+                        stats.wall_ms
+                    } else {
+                        render_ms
+                    };
+                    // The motion on screen since the last frame (outside the render's time).
+                    let motion = live.motion.next(Shot {
+                        camera,
+                        time_s: t_s,
+                        world_s: live.scene_time_s,
+                    })?;
+                    let report = FrameReport {
+                        tp_ms: render_ms,
+                        rays_per_depth: stats.rays.per_depth.clone(),
+                        shadow_rays: stats.rays.shadow,
+                        rays_stopped: Some(stats.rays.stopped),
+                        pixels: settings.pixels(),
+                        quality: q,
+                        speed_deg_s: motion.mean_deg_s,
+                    };
+                    if let Err(e) = live.control.observe(&report) {
+                        log::warn!("the controller refused a frame report: {e}");
+                    }
+                    let sample = Sample {
+                        t_s,
+                        render_ms,
+                        present_ms: None,
+                        quality: q,
+                        rays: stats.rays.total(),
+                    };
+                    live.speed_deg_s = Some(motion.mean_deg_s);
+                    if live.history.is_some() {
+                        live.warps_due = live.warps;
+                        warps_due = live.warps;
+                    }
+                    let handing = Instant::now();
+                    let image = live.renderer.image(&self.device, &self.queue)?;
+                    self.hand_over_ms = Some(handing.elapsed().as_secs_f64() * 1e3);
+                    let motion_facts = (live.speed_deg_s, live.control.target_frame_ms());
+                    (image, Some(sample), None, motion_facts)
                 }
-                let sample = Sample {
-                    t_s,
-                    render_ms,
-                    present_ms: None,
-                    quality: q,
-                    rays: stats.rays.total(),
-                };
-                let handing = Instant::now();
-                let image = live.renderer.image(&self.device, &self.queue)?;
-                self.hand_over_ms = Some(handing.elapsed().as_secs_f64() * 1e3);
-                let motion_facts = (Some(motion.mean_deg_s), live.control.target_frame_ms());
-                (image, Some(sample), None, motion_facts)
             }
             Mode::Playback(p) => {
                 if !paused {
@@ -762,26 +813,36 @@ impl Running {
                     message: self.message.as_deref(),
                     speed_deg_s,
                     target_ms,
+                    warps: (warps_per_frame > 0)
+                        .then(|| (warps_per_frame, self.all_warp_ms.last().copied())),
                 },
             },
         );
         // The frame that completes a `--frames` run (or, in playback, shows the last
-        // recorded frame) ends the view, and is the screenshot's.
+        // recorded frame) ends the view, and is the screenshot's; after its warped
+        // refreshes, when it has any.
         let at_end = playback.is_some_and(|(i, n)| i + 1 == n);
-        let ends_run = sample.is_some()
+        let frames_shown = self.all_render_ms.len() + usize::from(sample.is_some());
+        let ends_run = (sample.is_some() || warp_ms.is_some())
+            && warps_due == 0
             && self
                 .frames_limit
-                .is_some_and(|n| self.all_render_ms.len() + 1 >= n as usize || at_end);
+                .is_some_and(|n| frames_shown >= n as usize || at_end);
         let capture = self.shot_requested || (ends_run && self.screenshot.is_some());
         let drawn = self.screen.draw(&image, ui.frame, capture)?;
         let Drawn::Presented(shot) = drawn else {
             return Ok(Flow::Continue);
         };
         self.last_size = last_size;
+        if let Some(ms) = warp_ms {
+            self.all_warp_ms.push(ms);
+            self.observe_band(|band| band.observe_warp(ms));
+        }
         let presented = Instant::now();
-        let interval = self
-            .last_present
-            .replace(presented)
+        // Between frames' presents (a warped refresh is not a frame).
+        let interval = sample
+            .as_ref()
+            .and_then(|_| self.last_present.replace(presented))
             .map(|p| presented.duration_since(p).as_secs_f64() * 1e3);
         if let Some(mut sample) = sample {
             if matches!(self.mode, Mode::Live(_)) {
@@ -797,7 +858,7 @@ impl Running {
             self.apply(change);
         }
         if let Some(ms) = self.hand_over_ms.take() {
-            self.align_band(ms);
+            self.observe_band(|band| band.observe(ms));
         }
         if let Some(shot) = shot {
             self.save_shot(&shot, ends_run)?;
@@ -806,17 +867,25 @@ impl Running {
         Ok(if ends_run { Flow::Exit } else { Flow::Continue })
     }
 
-    /// Takes a frame's hand-over towards `--band refresh[:M]`, and sets the band once it is
-    /// measured.
-    fn align_band(&mut self, hand_over_ms: f64) {
+    /// Takes a frame's hand-over or a warp's cost towards `--band refresh[:M]` (`observe`
+    /// gives it to the pending band), and sets the band once it is measured.
+    fn observe_band(
+        &mut self,
+        observe: impl FnOnce(&mut DisplayBand) -> Option<Result<AlignedBand>>,
+    ) {
         let Some(pending) = &mut self.display_band else {
             return;
         };
-        match pending.observe(hand_over_ms) {
+        match observe(pending) {
             None => {}
             Some(Ok(b)) => {
+                let warps = if b.warp_ms > 0.0 {
+                    format!(", warp {:.2} ms (median)", b.warp_ms)
+                } else {
+                    String::new()
+                };
                 eprintln!(
-                    "steadyray view: --band refresh at {:.2} Hz: hand-over {:.2} ms (median), band [{:.2}, {:.2}] ms",
+                    "steadyray view: --band refresh at {:.2} Hz: hand-over {:.2} ms (median){warps}, band [{:.2}, {:.2}] ms",
                     b.refresh_hz, b.hand_over_ms, b.tmin_ms, b.tmax_ms
                 );
                 self.display_band = None;
@@ -906,6 +975,8 @@ impl Running {
             controller,
             render_ms: Spread::of(self.all_render_ms.iter().copied()),
             present_ms: Spread::of(self.all_present_ms.iter().copied()),
+            warped_refreshes: self.all_warp_ms.len(),
+            warp_ms: Spread::of(self.all_warp_ms.iter().copied()),
             in_band_pct: (!self.all_render_ms.is_empty())
                 .then(|| 100.0 * in_band as f64 / self.all_render_ms.len() as f64),
             last_frame: [self.last_size.0, self.last_size.1],

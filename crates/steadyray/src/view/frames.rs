@@ -3,7 +3,7 @@
 //! playback's PNGs are uploaded into one each frame.
 
 use anyhow::Result;
-use steadyray_render::{FrameStats, RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{FrameStats, Presented, RenderSettings, Renderer, TemporalSettings};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{DisplayImage, GpuRenderer};
 use steadyray_scene::{Camera, Scene};
@@ -47,6 +47,19 @@ impl Upload {
         }
         queue.write_buffer(&self.buffer, 0, rgba);
         self.size = (width, height);
+    }
+
+    /// Uploads the picture the CPU renderer handed over.
+    fn presented(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        presented: Presented,
+    ) -> DisplayImage<'_> {
+        if let Presented::Host(picture) = presented {
+            self.write(device, queue, picture.width, picture.height, &picture.rgba);
+        }
+        self.image()
     }
 
     /// The last uploaded image.
@@ -105,7 +118,9 @@ impl LiveRenderer {
         Ok(self.renderer().render(camera, time_s, settings)?)
     }
 
-    /// The last frame, where the present pass can read it.
+    /// The last frame as the display shows it (`Renderer::present`: the temporal history
+    /// sharpened where it was resampled, then tone-mapped), where the present pass can read
+    /// it.
     pub fn image(
         &mut self,
         device: &wgpu::Device,
@@ -114,15 +129,28 @@ impl LiveRenderer {
         match self {
             LiveRenderer::Gpu(r) => Ok(r.display_image()?),
             LiveRenderer::Cpu { renderer, upload } => {
-                let image = renderer.read_image()?;
-                upload.write(
-                    device,
-                    queue,
-                    image.width,
-                    image.height,
-                    &image.to_srgb8_rgba(),
-                );
-                Ok(upload.image())
+                let presented = renderer.present()?;
+                Ok(upload.presented(device, queue, presented))
+            }
+        }
+    }
+
+    /// The last frame shown again as `camera` sees it, for a refresh without a new frame
+    /// (`Renderer::present_warped`), where the present pass can read it.
+    pub fn warped(
+        &mut self,
+        camera: &Camera,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<DisplayImage<'_>> {
+        match self {
+            LiveRenderer::Gpu(r) => {
+                r.present_warped(camera)?;
+                Ok(r.display_image()?)
+            }
+            LiveRenderer::Cpu { renderer, upload } => {
+                let presented = renderer.present_warped(camera)?;
+                Ok(upload.presented(device, queue, presented))
             }
         }
     }

@@ -83,6 +83,8 @@ pub struct HudFacts<'a> {
     pub speed_deg_s: Option<f64>,
     /// The frame time the controller chose, ms (`perceptual` only).
     pub target_ms: Option<f64>,
+    /// Warped refreshes after each frame and the last one's cost, ms (`--warp` only).
+    pub warps: Option<(u32, Option<f64>)>,
 }
 
 /// Draws the HUD; returns its area in points.
@@ -217,6 +219,11 @@ fn figures(ui: &mut egui::Ui, facts: &HudFacts<'_>) {
                     ui.end_row();
                     ui.label("target");
                     ui.label(format!("{target:.1} ms ({:.0} fps)", 1e3 / target));
+                }
+                if let Some((warps, last_ms)) = facts.warps {
+                    ui.end_row();
+                    ui.label("warps");
+                    ui.label(format!("{warps} a frame, {}", ms(last_ms)));
                 }
             }
         }
@@ -353,6 +360,7 @@ mod tests {
             message: Some("refused"),
             speed_deg_s: Some(12.5),
             target_ms: Some(1000.0 / 30.0),
+            warps: Some((1, Some(6.2))),
         };
         let input = egui::RawInput {
             screen_rect: Some(Rect::from_min_size(Pos2::ZERO, vec2(640.0, 480.0))),

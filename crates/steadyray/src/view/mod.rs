@@ -93,6 +93,13 @@ pub struct ViewArgs {
     #[arg(long, value_enum, default_value_t = ViewTemporal::Auto, num_args = 0..=1,
         default_missing_value = "on")]
     pub temporal: ViewTemporal,
+    /// Show each refresh between two frames of `--band refresh:M` (M ≥ 2) as the last frame
+    /// warped to the camera at that refresh (docs/temporal.md, "Warped refreshes"), as
+    /// `bench --warp` does: M − 1 warps after each frame, their cost measured over the first
+    /// ones and left free in the band. Needs the temporal mode (`--temporal auto` turns it
+    /// on); while T has it off, refreshes repeat the frame.
+    #[arg(long)]
+    pub warp: bool,
     /// Show this many frames, then exit (tests and CI drive the view this way).
     #[arg(long)]
     pub frames: Option<u32>,
@@ -133,6 +140,8 @@ struct Plan {
     speed: f32,
     hud: bool,
     temporal: ViewTemporal,
+    /// Warped refreshes after each frame (`--warp`: M − 1 with `--band refresh:M`).
+    warps: u32,
     frames: Option<u32>,
     screenshot: Option<PathBuf>,
 }
@@ -186,6 +195,24 @@ impl Plan {
             (None, false, None) => Some(1),
             _ => None,
         };
+        let warps = if args.warp {
+            match aligned {
+                _ if args.playback.is_some() => {
+                    bail!("--warp shows a live history again: it needs a live view, not --playback")
+                }
+                Some(multiple) if multiple >= 2 => multiple - 1,
+                _ => bail!(
+                    "--warp fills the refreshes between frames of --band refresh:M with M >= 2 \
+                     (e.g. --band refresh:2); at one refresh a frame, or a band of fixed \
+                     --tmin/--tmax, no refresh is known to lack a new frame"
+                ),
+            }
+        } else {
+            0
+        };
+        if args.warp && args.temporal == ViewTemporal::Off {
+            bail!("--warp shows the temporal history again: it needs --temporal on or auto");
+        }
         if args.frames == Some(0) {
             bail!("--frames must be at least 1");
         }
@@ -257,7 +284,13 @@ impl Plan {
             sweep_seconds: args.sweep_seconds,
             speed: args.speed,
             hud: !args.no_hud,
-            temporal: args.temporal,
+            // A warp needs the history.
+            temporal: if args.warp {
+                ViewTemporal::On
+            } else {
+                args.temporal
+            },
+            warps,
             frames: args.frames,
             screenshot: args.screenshot.clone(),
         })
@@ -326,7 +359,7 @@ mod tests {
 
     #[test]
     fn bad_arguments_fail_before_a_window_opens() {
-        let cases: [(&[&str], &str); 9] = [
+        let cases: [(&[&str], &str); 13] = [
             (&["--tmin", "20", "--tmax", "10"], "Tmin"),
             (&["--tmin", "10", "--band", "refresh"], "--band"),
             (&["--controller", "fastest"], "fastest"),
@@ -336,6 +369,13 @@ mod tests {
             (&["--scene", "nowhere"], "nowhere"),
             (&["--playback", "/nonexistent/recording"], "not a folder"),
             (&["--width", "0"], "window size"),
+            (&["--warp"], "refresh:M"),
+            (&["--warp", "--tmax", "40"], "refresh:M"),
+            (
+                &["--warp", "--band", "refresh:2", "--temporal", "off"],
+                "--temporal",
+            ),
+            (&["--warp", "--playback", "somewhere"], "--playback"),
         ];
         for (args, expected) in cases {
             let err = match plan(args) {
@@ -371,6 +411,15 @@ mod tests {
         assert!(starts(&["--temporal", "auto"], false));
         let err = format!("{:#}", plan(&["--temporal", "sometimes"]).err().unwrap());
         assert!(err.contains("sometimes"), "{err}");
+    }
+
+    #[test]
+    fn warps_fill_the_refreshes_between_frames_with_the_history_on() {
+        assert_eq!(plan(&[]).unwrap().warps, 0);
+        let two = plan(&["--band", "refresh:2", "--warp"]).unwrap();
+        assert_eq!(two.warps, 1);
+        assert!(two.temporal.starts_on(true), "--warp turns the history on");
+        assert_eq!(plan(&["--band", "refresh:3", "--warp"]).unwrap().warps, 2);
     }
 
     #[test]
