@@ -25,8 +25,11 @@
 //!
 //! The band for a frame time T (so that a frame started at a refresh is handed over before
 //! the refresh T later, with `slack` of T kept free for timing noise) is
-//! [Tmax − `width`·T, Tmax] with Tmax = T·(1 − `slack`) − `hand_over`: the same band as
-//! `bench --band refresh[:M]` (`steadyray_display::aligned_band`) for T = M refreshes. The
+//! [Tmax − `width`·T, Tmax] with Tmax = T·(1 − `slack`) − `hand_over` − (M − 1)·`warp` for
+//! T = M refreshes of the model's display: the same band as `bench --band refresh[:M]`
+//! (`steadyray_display::aligned_band`), where the M − 1 refreshes between frames show warped
+//! pictures made on the same machine (`bench --warp`; `warp` 0 without). The model's scores
+//! are of plain frames shown at T, not of warped refreshes. The
 //! setup's band is not used: the bands come from the model's frame times. The target starts at the longest
 //! frame time (a still picture is best shown at the highest quality).
 //!
@@ -37,7 +40,7 @@
 //! as it keeps any band.
 //!
 //! Options: `model`=PATH (a `motion.json` from `calibrate --motion`, required),
-//! `hold_ms`=500, `margin`=0.02, `fall_ms`=300, `hand_over`=1 (ms), `slack`=0.05,
+//! `hold_ms`=500, `margin`=0.02, `fall_ms`=300, `hand_over`=1 (ms), `warp`=0 (ms), `slack`=0.05,
 //! `width`=0.2, and every option of
 //! `predictive` but `ladder` (the ladder is the model's).
 
@@ -67,6 +70,9 @@ pub struct PerceptualParams {
     /// `hand_over`: the time a frame takes from the end of its render to the display, ms:
     /// the band for frame time T ends at T minus it. Default 1.
     pub hand_over_ms: f64,
+    /// `warp`: the cost of a warped refresh, ms, when the refreshes between frames show one:
+    /// the band for M refreshes ends M − 1 of them earlier. Default 0 (no warps).
+    pub warp_ms: f64,
     /// `slack`: the fraction of the frame time kept free under it for timing noise.
     /// Default 0.05.
     pub slack: f64,
@@ -84,6 +90,7 @@ impl Default for PerceptualParams {
             margin: 0.02,
             fall_ms: 300.0,
             hand_over_ms: 1.0,
+            warp_ms: 0.0,
             slack: 0.05,
             width: 0.2,
             predictive: PredictiveParams::default(),
@@ -91,7 +98,7 @@ impl Default for PerceptualParams {
     }
 }
 
-const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, slack, width, and predictive's options \
+const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, warp, slack, width, and predictive's options \
                                (order, target, deadband, min_reach, max_raise, trend, \
                                measured_cut, forgetting, outlier_k, confirm)";
 
@@ -114,6 +121,7 @@ impl PerceptualParams {
             "margin" => self.margin = parse_option(key, value, within(0.0, 1.0))?,
             "fall_ms" => self.fall_ms = parse_option(key, value, within(0.0, 1e6))?,
             "hand_over" => self.hand_over_ms = parse_option(key, value, within(0.0, 1e3))?,
+            "warp" => self.warp_ms = parse_option(key, value, within(0.0, 1e3))?,
             "slack" => self.slack = parse_option(key, value, within(0.0, 0.5))?,
             "width" => self.width = parse_option(key, value, within(0.05, 0.9))?,
             "ladder" => {
@@ -169,7 +177,7 @@ pub struct Perceptual {
 
 impl Perceptual {
     /// A perceptual controller; errors on a bad setup, a missing model, or a frame time too
-    /// short to leave a band after the hand-over.
+    /// short to leave a band after the hand-over and warps.
     pub fn new(setup: Setup, params: PerceptualParams) -> Result<Self, ConfigError> {
         let model = params.model.ok_or_else(|| ConfigError::BadOption {
             key: "model".into(),
@@ -182,13 +190,16 @@ impl Perceptual {
             .frame_times_ms
             .iter()
             .map(|&t| {
-                let tmax = t * (1.0 - params.slack) - params.hand_over_ms;
+                let refreshes = (t * model.refresh_hz / 1000.0).round().max(1.0);
+                let warps_ms = (refreshes - 1.0) * params.warp_ms;
+                let tmax = t * (1.0 - params.slack) - params.hand_over_ms - warps_ms;
                 Band::new(tmax - params.width * t, tmax).map_err(|_| ConfigError::BadOption {
                     key: "hand_over".into(),
                     value: params.hand_over_ms.to_string(),
                     why: format!(
-                        "frame time {t} ms leaves no band after a {} ms hand-over, a slack of \
-                         {} and a width of {} of the frame time",
+                        "frame time {t} ms leaves no band after a {} ms hand-over, {warps_ms} \
+                         ms of warped refreshes, a slack of {} and a width of {} of the frame \
+                         time",
                         params.hand_over_ms, params.slack, params.width
                     ),
                 })

@@ -207,3 +207,33 @@ fn options_are_checked() {
     let err = Perceptual::new(setup, params).unwrap_err().to_string();
     assert!(err.contains("leaves no band"), "{err}");
 }
+
+/// With warped refreshes between frames (`warp`), the band for M refreshes ends M − 1 warps
+/// earlier; one refresh a frame has no warp to leave room for.
+#[test]
+fn warped_refreshes_take_their_time_from_the_longer_frames_bands() {
+    let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+    let controller = |warp_ms: f64| {
+        let params = PerceptualParams {
+            model: Some(model()),
+            warp_ms,
+            ..PerceptualParams::default()
+        };
+        Perceptual::new(setup, params).unwrap()
+    };
+    // It starts at three refreshes a frame: two warps of 6 ms come off.
+    let (plain, warped) = (controller(0.0).band(), controller(6.0).band());
+    assert!((plain.tmax_ms() - warped.tmax_ms() - 12.0).abs() < 1e-9);
+    assert!((plain.tmin_ms() - warped.tmin_ms() - 12.0).abs() < 1e-9);
+    // Fast motion moves the target to one refresh a frame: nothing comes off.
+    let fast = |mut c: Perceptual| {
+        run(&mut c, &[FAST; 20]);
+        assert_eq!(c.target_ms(), FRAME_TIMES[0]);
+        c.band()
+    };
+    assert_eq!(fast(controller(0.0)), fast(controller(6.0)));
+    let mut p = PerceptualParams::default();
+    p.set("warp", "6.5").unwrap();
+    assert_eq!(p.warp_ms, 6.5);
+    assert!(p.set("warp", "-1").is_err());
+}

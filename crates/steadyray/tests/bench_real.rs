@@ -331,3 +331,70 @@ fn a_warped_band_leaves_room_for_the_warps_between_frames() {
     assert_eq!(summary["aligned_band"]["warp_ms"], 0.0);
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+/// A `perceptual` controller under `--warp` is told what a warped refresh costs (measured
+/// before the runs), so that its bands of two or more refreshes leave room for the warps.
+#[test]
+fn a_perceptual_controller_is_told_the_warps_cost() {
+    use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
+    use steadyray_control::{Metric, MotionModel};
+    let out = scratch("perceptual-warp");
+    let frame_times_ms = vec![1000.0 / 60.0, 2000.0 / 60.0];
+    let model = MotionModel {
+        metric: Metric::Jod,
+        scene: "corridor".into(),
+        resolution: [32, 18],
+        refresh_hz: 60.0,
+        stimulus_s: 0.5,
+        viewing: Value::Null,
+        ladder: Ladder {
+            scene: "corridor".into(),
+            resolution: [32, 18],
+            reference: Reference {
+                spp: 16.0,
+                depth: 16,
+                scale: 1.0,
+            },
+            views: 1,
+            temporal_frames: None,
+            points: vec![LadderPoint {
+                spp: 1.0,
+                depth: 4,
+                scale: 1.0,
+                rays: 600.0,
+                ms: 1.0,
+                flip: 0.1,
+            }],
+        },
+        speeds_deg_s: vec![0.0],
+        scores: vec![vec![vec![8.0]; 2]],
+        frame_times_ms,
+    };
+    std::fs::create_dir_all(&out).unwrap();
+    let model_path = out.join("motion.json");
+    std::fs::write(&model_path, serde_json::to_string(&model).unwrap()).unwrap();
+    let output = tiny_cpu_bench()
+        .arg("--controllers")
+        .arg(format!("perceptual:model={}", model_path.display()))
+        .args(["--no-best-fixed", "--temporal", "on", "--warp", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let told = stderr
+        .split("bench: perceptual: warped refresh ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no warp passed on in: {stderr}"));
+    assert!(told > 0.0 && told < 1000.0 / 60.0, "{told}");
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let name = summary["controllers"][0]["name"].as_str().unwrap();
+    assert!(
+        name.starts_with("perceptual") && !name.contains("warp="),
+        "{name}"
+    );
+    std::fs::remove_dir_all(&out).unwrap();
+}

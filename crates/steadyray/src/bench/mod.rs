@@ -300,8 +300,18 @@ impl ControllerSpec {
     /// A `perceptual` controller not told its hand-over: under the real clock the bench
     /// measures it and passes it on, so that its bands are `--band refresh`'s.
     fn lacks_hand_over(&self) -> bool {
+        self.lacks("hand_over")
+    }
+
+    /// A `perceptual` controller not told what a warped refresh costs: under `--warp` the
+    /// bench measures it and passes it on, so that its bands leave room for the warps.
+    fn lacks_warp(&self) -> bool {
+        self.lacks("warp")
+    }
+
+    fn lacks(&self, key: &str) -> bool {
         self.name == "perceptual"
-            && !parse_options(&self.options).is_ok_and(|o| o.iter().any(|(k, _)| k == "hand_over"))
+            && !parse_options(&self.options).is_ok_and(|o| o.iter().any(|(k, _)| k == key))
     }
 
     /// Appends `key=value` to the options.
@@ -314,7 +324,7 @@ impl ControllerSpec {
 
     /// The run's name in reports (not for `fixed`, named by its quality): the controller and
     /// its options; for `perceptual`, its `model` file by its stem and the measured
-    /// `hand_over` left out.
+    /// `hand_over` and `warp` left out.
     fn label(&self) -> String {
         if self.name != "perceptual" {
             return match self.options.is_empty() {
@@ -325,7 +335,7 @@ impl ControllerSpec {
         let options: Vec<String> = parse_options(&self.options)
             .unwrap_or_default()
             .into_iter()
-            .filter(|(k, _)| k != "hand_over")
+            .filter(|(k, _)| k != "hand_over" && k != "warp")
             .map(|(k, v)| match k.as_str() {
                 "model" => {
                     let stem = std::path::Path::new(&v)
@@ -466,17 +476,35 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             spec.add_option(&format!("hand_over={ms:.3}"));
         }
     }
+    // Warped refreshes between frames run on the same machine as the frames: their cost,
+    // measured once when a band of more than one refresh or a controller choosing its frame
+    // time leaves room for them.
+    let needs_warp = args.warp
+        && (args.band.is_some_and(|b| b.multiple > 1)
+            || specs.iter().any(ControllerSpec::lacks_warp));
+    let measured_warp_ms = match &real {
+        Some(options) if needs_warp => {
+            let period_s = options.display.period_ms() / 1000.0;
+            let ms = measure_warp(source.as_mut(), start, args.warmup.max(5), period_s)?;
+            for spec in specs.iter_mut().filter(|s| s.lacks_warp()) {
+                eprintln!(
+                    "bench: {}: warped refresh {ms:.2} ms (median at the start quality)",
+                    spec.name
+                );
+                spec.add_option(&format!("warp={ms:.3}"));
+            }
+            Some(ms)
+        }
+        _ => None,
+    };
     let (band, aligned) = match (&args.band, &real, hand_over_ms) {
         (None, _, _) => (Band::new(args.tmin, args.tmax)?, None),
         (Some(_), None, _) => bail!("--band refresh needs --clock real"),
         (Some(_), Some(_), None) => bail!("the hand-over was not measured"),
         (Some(choice), Some(options), Some(hand_over_ms)) => {
-            // Warped refreshes between frames run on the same machine as the frames.
-            let warp_ms = if args.warp && choice.multiple > 1 {
-                let period_s = options.display.period_ms() / 1000.0;
-                measure_warp(source.as_mut(), start, args.warmup.max(5), period_s)?
-            } else {
-                0.0
+            let warp_ms = match measured_warp_ms {
+                Some(ms) if choice.multiple > 1 => ms,
+                _ => 0.0,
             };
             let (tmin, tmax) =
                 aligned_band(&options.display, choice.multiple, hand_over_ms, warp_ms)?;
@@ -856,7 +884,13 @@ mod tests {
         assert!(specs[1].lacks_hand_over());
         specs[1].add_option("hand_over=1.600");
         assert!(!specs[1].lacks_hand_over());
-        assert_eq!(specs[1].options, "model=out/motion.json hand_over=1.600");
+        assert!(!specs[0].lacks_warp() && specs[1].lacks_warp());
+        specs[1].add_option("warp=6.500");
+        assert!(!specs[1].lacks_warp());
+        assert_eq!(
+            specs[1].options,
+            "model=out/motion.json hand_over=1.600 warp=6.500"
+        );
         assert_eq!(specs[1].label(), "perceptual model=motion");
         assert_eq!(specs[0].label(), "predictive order=depth+spp");
     }
@@ -903,16 +937,19 @@ mod tests {
         };
         let bounds = Bounds::default();
         let setup = Setup::new(Band::PAPER, bounds, bounds.min_quality()).unwrap();
-        let params = PerceptualParams {
-            model: Some(model),
-            hand_over_ms: 1.6,
-            ..PerceptualParams::default()
-        };
-        let c = Perceptual::new(setup, params).unwrap();
-        // It starts at the longest frame time: three refreshes.
-        let (tmin, tmax) = aligned_band(&display, 3, 1.6, 0.0).unwrap();
-        assert!((c.band().tmin_ms() - tmin).abs() < 1e-9);
-        assert!((c.band().tmax_ms() - tmax).abs() < 1e-9);
+        for warp_ms in [0.0, 6.5] {
+            let params = PerceptualParams {
+                model: Some(model.clone()),
+                hand_over_ms: 1.6,
+                warp_ms,
+                ..PerceptualParams::default()
+            };
+            let c = Perceptual::new(setup, params).unwrap();
+            // It starts at the longest frame time: three refreshes, two of them warped.
+            let (tmin, tmax) = aligned_band(&display, 3, 1.6, warp_ms).unwrap();
+            assert!((c.band().tmin_ms() - tmin).abs() < 1e-9);
+            assert!((c.band().tmax_ms() - tmax).abs() < 1e-9);
+        }
     }
 
     #[test]
