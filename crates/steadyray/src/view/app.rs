@@ -4,7 +4,7 @@
 
 use super::camera::{FlyCamera, Sweep};
 use super::capture::Screenshot;
-use super::display_band::{AlignedBand, DisplayBand};
+use super::display_band::{AlignedBand, DisplayBand, FALLBACK_REFRESH_HZ};
 use super::frames::{LiveRenderer, Upload};
 use super::history::{FrameHistory, Sample, Spread};
 use super::hud::{self, HudChange, HudEdit, HudFacts};
@@ -139,10 +139,12 @@ struct Live {
     /// renderer's history has (None: off).
     temporal: bool,
     history: Option<(u32, u32)>,
-    /// Refreshes shown warped after each frame in the temporal mode (`--warp`), and how
-    /// many of the last frame's are still to show.
+    /// Refreshes shown warped after each frame in the temporal mode (`--warp`: M − 1 for
+    /// `--band refresh:M`), and how many of the last frame's are still to show.
     warps: u32,
     warps_due: u32,
+    /// The monitor's refresh interval, ms (60 Hz where it does not say).
+    refresh_ms: f64,
     /// The last frame's motion on screen, °/s (the HUD shows it through the warps too).
     speed_deg_s: Option<f64>,
 }
@@ -159,6 +161,19 @@ impl Live {
             self.warps_due = 0;
         }
         Ok(())
+    }
+
+    /// The refreshes to show warped after a frame: none without `--warp` or a history;
+    /// those between frames of the controller's chosen frame time (`perceptual`), else of
+    /// the band's.
+    fn warps_after_frame(&self) -> u32 {
+        if self.warps == 0 || self.history.is_none() {
+            return 0;
+        }
+        match self.control.target_frame_ms() {
+            Some(ms) => ((ms / self.refresh_ms).round() as u32).saturating_sub(1),
+            None => self.warps,
+        }
     }
 
     /// Moves the camera and the scene `dt_s` on (input, sweep or keyed path; none while
@@ -401,6 +416,11 @@ impl Running {
             .context("cannot create a GPU surface for the window")?;
         let size = window.inner_size();
         let size = (size.width, size.height);
+        let refresh_hz = window
+            .current_monitor()
+            .and_then(|m| m.refresh_rate_millihertz())
+            .map(|mhz| f64::from(mhz) / 1000.0)
+            .filter(|hz| hz.is_finite() && *hz > 0.0);
 
         let (mode, adapter, device, queue, device_label, timing) = match plan.content {
             Content::Live(setup) => {
@@ -451,6 +471,7 @@ impl Running {
                     history: None,
                     warps: plan.warps,
                     warps_due: 0,
+                    refresh_ms: 1000.0 / refresh_hz.unwrap_or(FALLBACK_REFRESH_HZ),
                     speed_deg_s: None,
                 };
                 let mode = Mode::Live(Box::new(live));
@@ -512,13 +533,7 @@ impl Running {
             Mode::Playback(_) => ("fixed", steadyray_control::Bounds::default()),
         };
         let display_band = match plan.aligned {
-            Some(multiple) => {
-                let refresh_hz = window
-                    .current_monitor()
-                    .and_then(|m| m.refresh_rate_millihertz())
-                    .map(|mhz| f64::from(mhz) / 1000.0);
-                Some(DisplayBand::new(multiple, refresh_hz, plan.warps > 0)?)
-            }
+            Some(multiple) => Some(DisplayBand::new(multiple, refresh_hz, plan.warps > 0)?),
             None => None,
         };
         let now = Instant::now();
@@ -676,7 +691,7 @@ impl Running {
         let mut warp_ms = None;
         let mut warps_due = 0;
         let warps_per_frame = match &self.mode {
-            Mode::Live(live) => live.warps,
+            Mode::Live(live) => live.warps_after_frame(),
             Mode::Playback(_) => 0,
         };
         let (image, sample, playback, (speed_deg_s, target_ms)) = match &mut self.mode {
@@ -751,10 +766,8 @@ impl Running {
                         rays: stats.rays.total(),
                     };
                     live.speed_deg_s = Some(motion.mean_deg_s);
-                    if live.history.is_some() {
-                        live.warps_due = live.warps;
-                        warps_due = live.warps;
-                    }
+                    live.warps_due = live.warps_after_frame();
+                    warps_due = live.warps_due;
                     let handing = Instant::now();
                     let image = live.renderer.image(&self.device, &self.queue)?;
                     self.hand_over_ms = Some(handing.elapsed().as_secs_f64() * 1e3);
