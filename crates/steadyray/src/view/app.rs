@@ -176,6 +176,74 @@ impl Live {
         }
     }
 
+    /// Renders a frame of `full` pixels at the controller's quality, seen by the camera at
+    /// scene time and window time `(camera, scene_time_s, t_s)`, and tells the controller
+    /// its render time (`timing`: where it comes from, changed to the wall clock when GPU
+    /// timestamps prove implausible) and motion on screen.
+    fn render_frame(
+        &mut self,
+        (camera, scene_time_s, t_s): (Camera, f64, f64),
+        full: (u32, u32),
+        device: &wgpu::Device,
+        timing: &mut String,
+    ) -> Result<Sample> {
+        let q = self.control.quality();
+        let (width, height) = scaled(full, q.scale);
+        let settings = RenderSettings {
+            width,
+            height,
+            spp: q.spp,
+            max_depth: q.depth,
+        };
+        // The previous frame's present work first: the render call's wall time is then its
+        // own, a check on the GPU timestamps.
+        if let Err(e) = device.poll(wgpu::PollType::wait_indefinitely()) {
+            return Err(anyhow!("waiting for the GPU failed: {e}"));
+        }
+        let stats = self.renderer.render(&camera, scene_time_s, &settings)?;
+        let (render_ms, source) = controller_time(&stats);
+        if source != TimingSource::GpuTimestamps && timing.starts_with("GPU timestamps") {
+            log::warn!(
+                "GPU timestamps say {:.2} ms but the render call took {:.2} ms: the controller \
+                 uses the wall clock from now on",
+                stats.render_ms,
+                stats.wall_ms
+            );
+            *timing = "GPU wall clock".into();
+        }
+        let render_ms = if timing.starts_with("GPU wall clock") {
+            stats.wall_ms
+        } else {
+            render_ms
+        };
+        // The motion on screen since the last frame (outside the render's time).
+        let motion = self.motion.next(Shot {
+            camera,
+            time_s: t_s,
+            world_s: self.scene_time_s,
+        })?;
+        self.speed_deg_s = Some(motion.mean_deg_s);
+        let report = FrameReport {
+            tp_ms: render_ms,
+            rays_per_depth: stats.rays.per_depth.clone(),
+            shadow_rays: stats.rays.shadow,
+            rays_stopped: Some(stats.rays.stopped),
+            pixels: settings.pixels(),
+            quality: q,
+            speed_deg_s: motion.mean_deg_s,
+        };
+        if let Err(e) = self.control.observe(&report) {
+            log::warn!("the controller refused a frame report: {e}");
+        }
+        Ok(Sample {
+            t_s,
+            render_ms,
+            present_ms: None,
+            quality: q,
+            rays: stats.rays.total(),
+        })
+    }
+
     /// Moves the camera and the scene `dt_s` on (input, sweep or keyed path; none while
     /// `paused`) and returns the camera and scene time to show.
     fn advance(
@@ -697,82 +765,28 @@ impl Running {
         let (image, sample, playback, (speed_deg_s, target_ms)) = match &mut self.mode {
             Mode::Live(live) => {
                 let (camera, scene_time_s) = live.advance(dt_s, look, movement, paused);
-                let q = live.control.quality();
                 let full = full_size(self.screen.size(), live.pixel_size);
                 live.sync_history(full)?;
+                let facts = |live: &Live| (live.speed_deg_s, live.control.target_frame_ms());
                 if live.warps_due > 0 {
                     // A refresh without a new frame: the last one warped to this camera.
                     live.warps_due -= 1;
                     warps_due = live.warps_due;
-                    let facts = (live.speed_deg_s, live.control.target_frame_ms());
+                    let facts = facts(live);
                     let warping = Instant::now();
                     let image = live.renderer.warped(&camera, &self.device, &self.queue)?;
                     warp_ms = Some(warping.elapsed().as_secs_f64() * 1e3);
                     (image, None, None, facts)
                 } else {
-                    let (width, height) = scaled(full, q.scale);
-                    let settings = RenderSettings {
-                        width,
-                        height,
-                        spp: q.spp,
-                        max_depth: q.depth,
-                    };
-                    // The previous frame's present work first: the render call's wall time is
-                    // then its own, a check on the GPU timestamps.
-                    if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
-                        return Err(anyhow!("waiting for the GPU failed: {e}"));
-                    }
-                    let stats = live.renderer.render(&camera, scene_time_s, &settings)?;
-                    let (render_ms, source) = controller_time(&stats);
-                    if source != TimingSource::GpuTimestamps
-                        && self.timing.starts_with("GPU timestamps")
-                    {
-                        log::warn!(
-                            "GPU timestamps say {:.2} ms but the render call took {:.2} ms: the \
-                         controller uses the wall clock from now on",
-                            stats.render_ms,
-                            stats.wall_ms
-                        );
-                        self.timing = "GPU wall clock".into();
-                    }
-                    let render_ms = if self.timing.starts_with("GPU wall clock") {
-                        stats.wall_ms
-                    } else {
-                        render_ms
-                    };
-                    // The motion on screen since the last frame (outside the render's time).
-                    let motion = live.motion.next(Shot {
-                        camera,
-                        time_s: t_s,
-                        world_s: live.scene_time_s,
-                    })?;
-                    let report = FrameReport {
-                        tp_ms: render_ms,
-                        rays_per_depth: stats.rays.per_depth.clone(),
-                        shadow_rays: stats.rays.shadow,
-                        rays_stopped: Some(stats.rays.stopped),
-                        pixels: settings.pixels(),
-                        quality: q,
-                        speed_deg_s: motion.mean_deg_s,
-                    };
-                    if let Err(e) = live.control.observe(&report) {
-                        log::warn!("the controller refused a frame report: {e}");
-                    }
-                    let sample = Sample {
-                        t_s,
-                        render_ms,
-                        present_ms: None,
-                        quality: q,
-                        rays: stats.rays.total(),
-                    };
-                    live.speed_deg_s = Some(motion.mean_deg_s);
+                    let at = (camera, scene_time_s, t_s);
+                    let sample = live.render_frame(at, full, &self.device, &mut self.timing)?;
                     live.warps_due = live.warps_after_frame();
                     warps_due = live.warps_due;
+                    let facts = facts(live);
                     let handing = Instant::now();
                     let image = live.renderer.image(&self.device, &self.queue)?;
                     self.hand_over_ms = Some(handing.elapsed().as_secs_f64() * 1e3);
-                    let motion_facts = (live.speed_deg_s, live.control.target_frame_ms());
-                    (image, Some(sample), None, motion_facts)
+                    (image, Some(sample), None, facts)
                 }
             }
             Mode::Playback(p) => {
