@@ -89,6 +89,11 @@ pub struct MotionModel {
     pub refresh_hz: f64,
     /// Each stimulus's length, s.
     pub stimulus_s: f64,
+    /// Whether the stimuli were shown by the temporal mode with each refresh between two
+    /// frames warped to its own time (`calibrate --motion --warp`), or as plain frames held
+    /// on screen (absent in older models: plain).
+    #[serde(default)]
+    pub warped: bool,
     /// The viewing set-up the scores assume (information only).
     pub viewing: serde_json::Value,
     /// The settings scored.
@@ -237,6 +242,7 @@ mod tests {
             resolution: [64, 36],
             refresh_hz: 60.0,
             stimulus_s: 1.0,
+            warped: false,
             viewing: serde_json::Value::Null,
             ladder: Ladder {
                 scene: "test".into(),

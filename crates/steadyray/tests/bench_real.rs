@@ -346,6 +346,7 @@ fn a_perceptual_controller_is_told_the_warps_cost() {
         resolution: [32, 18],
         refresh_hz: 60.0,
         stimulus_s: 0.5,
+        warped: false,
         viewing: Value::Null,
         ladder: Ladder {
             scene: "corridor".into(),

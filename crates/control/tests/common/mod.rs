@@ -64,6 +64,7 @@ pub fn model() -> MotionModel {
         resolution: [640, 360],
         refresh_hz: 60.0,
         stimulus_s: 1.0,
+        warped: false,
         viewing: serde_json::Value::Null,
         ladder,
         speeds_deg_s: speeds,

@@ -918,6 +918,7 @@ mod tests {
             resolution: [64, 36],
             refresh_hz: 60.0,
             stimulus_s: 0.5,
+            warped: false,
             viewing: serde_json::Value::Null,
             ladder: Ladder {
                 scene: "test".into(),

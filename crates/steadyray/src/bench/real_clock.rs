@@ -144,7 +144,7 @@ pub struct WarpFigures {
 
 impl Warps {
     /// Records a warp shown at refresh `refresh` that cost `ms`, with its picture if kept.
-    fn record(&mut self, refresh: usize, ms: f64, picture: Option<Rgb8Image>) {
+    pub fn record(&mut self, refresh: usize, ms: f64, picture: Option<Rgb8Image>) {
         self.shown.insert(refresh);
         self.ms.push(ms);
         if let Some(picture) = picture {

@@ -99,6 +99,12 @@ pub struct CalibrateArgs {
     /// With --motion: each stimulus's length, seconds.
     #[arg(long, requires = "motion", default_value_t = 0.5)]
     pub stimulus: f64,
+    /// With --motion: show the stimuli as `bench --temporal on --warp` does (frames
+    /// accumulated into a temporal history, each refresh between two frames the last frame
+    /// warped to its time), so the table scores long frames with their age warped away;
+    /// score the points of a ladder from `calibrate --temporal`.
+    #[arg(long, requires = "motion")]
+    pub warp: bool,
     /// With --motion: write each stimulus's screen and reference videos into DIR (one
     /// folder per view and speed, in the layout of `bench --video`).
     #[arg(long, requires = "motion", value_name = "DIR")]
@@ -381,6 +387,7 @@ fn run_motion(args: &CalibrateArgs, renderer: &mut dyn Renderer, scene: &Scene) 
             script: args.jod_script.clone(),
             keep_video: args.keep_video,
         }),
+        warp: args.warp,
     };
     let progress = ProgressBar::new(stimulus_count(&plan));
     progress.set_style(
