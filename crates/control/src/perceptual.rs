@@ -26,7 +26,8 @@
 //! The band for a frame time T (so that a frame started at a refresh is handed over before
 //! the refresh T later, with `slack` of T kept free for timing noise) is
 //! [Tmax − `width`·T, Tmax] with Tmax = T·(1 − `slack`) − `hand_over` − (M − 1)·`warp` for
-//! T = M refreshes of the model's display: the same band as `bench --band refresh[:M]`
+//! T = M refreshes of the model's display, its lower edge raised where needed so that a frame
+//! in it does not make the refresh before: the same band as `bench --band refresh[:M]`
 //! (`steadyray_display::aligned_band`), where the M − 1 refreshes between frames show warped
 //! pictures made on the same machine (`bench --warp`; `warp` 0 without). The model's scores
 //! are of plain frames shown at T, not of warped refreshes. The
@@ -193,13 +194,18 @@ impl Perceptual {
                 let refreshes = (t * model.refresh_hz / 1000.0).round().max(1.0);
                 let warps_ms = (refreshes - 1.0) * params.warp_ms;
                 let tmax = t * (1.0 - params.slack) - params.hand_over_ms - warps_ms;
-                Band::new(tmax - params.width * t, tmax).map_err(|_| ConfigError::BadOption {
+                // A frame done sooner makes the refresh before (with the warps before it).
+                let early = (refreshes - 1.0) * 1000.0 / model.refresh_hz
+                    - params.hand_over_ms
+                    - (refreshes - 2.0).max(0.0) * params.warp_ms;
+                let tmin = (tmax - params.width * t).max(if refreshes > 1.0 { early } else { 0.0 });
+                Band::new(tmin, tmax).map_err(|_| ConfigError::BadOption {
                     key: "hand_over".into(),
                     value: params.hand_over_ms.to_string(),
                     why: format!(
                         "frame time {t} ms leaves no band after a {} ms hand-over, {warps_ms} \
                          ms of warped refreshes, a slack of {} and a width of {} of the frame \
-                         time",
+                         time (or frames in it make the refresh before)",
                         params.hand_over_ms, params.slack, params.width
                     ),
                 })

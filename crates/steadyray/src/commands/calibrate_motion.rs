@@ -842,7 +842,10 @@ mod tests {
             ..key
         };
         assert_eq!(reuse(&dir, &other), None, "another stimulus");
-        let warped = StimulusKey { warp: true, ..other };
+        let warped = StimulusKey {
+            warp: true,
+            ..other
+        };
         assert_eq!(reuse(&dir, &warped), None, "warped stimuli");
         std::fs::remove_dir_all(&dir).unwrap();
     }
