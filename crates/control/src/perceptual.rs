@@ -194,10 +194,8 @@ impl Perceptual {
                 let refreshes = (t * model.refresh_hz / 1000.0).round().max(1.0);
                 let warps_ms = (refreshes - 1.0) * params.warp_ms;
                 let tmax = t * (1.0 - params.slack) - params.hand_over_ms - warps_ms;
-                // A frame done sooner makes the refresh before (with the warps before it).
-                let early = (refreshes - 1.0) * 1000.0 / model.refresh_hz
-                    - params.hand_over_ms
-                    - (refreshes - 2.0).max(0.0) * params.warp_ms;
+                // A frame done sooner makes the refresh before on its own.
+                let early = (refreshes - 1.0) * 1000.0 / model.refresh_hz - params.hand_over_ms;
                 let tmin = (tmax - params.width * t).max(if refreshes > 1.0 { early } else { 0.0 });
                 Band::new(tmin, tmax).map_err(|_| ConfigError::BadOption {
                     key: "hand_over".into(),
