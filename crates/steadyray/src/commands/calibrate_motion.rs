@@ -876,17 +876,22 @@ mod tests {
         );
     }
 
-    #[test]
-    fn a_tiny_model_of_displayed_flip_punishes_long_frames_of_fast_motion() {
+    /// The corridor on the CPU renderer.
+    fn corridor() -> (Scene, CpuRenderer) {
         let scene = steadyray_scene::load_scene("corridor").unwrap();
         let mut renderer = CpuRenderer::new();
         renderer.load_scene(&scene).unwrap();
-        let plan = MotionPlan {
+        (scene, renderer)
+    }
+
+    /// A plan of 0.1 s stimuli at 32 × 18, one view, frames of one and three refreshes.
+    fn tiny_plan(ladder: Ladder, speeds: Vec<f64>) -> MotionPlan {
+        MotionPlan {
             width: 32,
             height: 18,
-            ladder: ladder(&[(1.0, 0.5, 1e3, 1.0), (2.0, 1.0, 4e3, 2.0)]),
+            ladder,
             points: 0,
-            speeds: vec![0.0, 60.0],
+            speeds,
             refreshes: vec![1, 3],
             refresh_hz: 60.0,
             stimulus_s: 0.1,
@@ -895,7 +900,14 @@ mod tests {
             video: None,
             jod: None,
             warp: false,
-        };
+        }
+    }
+
+    #[test]
+    fn a_tiny_model_of_displayed_flip_punishes_long_frames_of_fast_motion() {
+        let (scene, mut renderer) = corridor();
+        let points = ladder(&[(1.0, 0.5, 1e3, 1.0), (2.0, 1.0, 4e3, 2.0)]);
+        let plan = tiny_plan(points, vec![0.0, 60.0]);
         assert_eq!(stimulus_count(&plan), 2 * (2 + 1));
         let tables =
             calibrate_motion(&mut renderer, &scene, &plan, &ProgressBar::hidden()).unwrap();
@@ -923,24 +935,8 @@ mod tests {
     /// three refreshes a frame of fast motion cost far less over one than held frames do.
     #[test]
     fn warped_stimuli_take_the_age_out_of_long_frames() {
-        let scene = steadyray_scene::load_scene("corridor").unwrap();
-        let mut renderer = CpuRenderer::new();
-        renderer.load_scene(&scene).unwrap();
-        let plan = MotionPlan {
-            width: 32,
-            height: 18,
-            ladder: ladder(&[(2.0, 1.0, 4e3, 2.0)]),
-            points: 0,
-            speeds: vec![120.0],
-            refreshes: vec![1, 3],
-            refresh_hz: 60.0,
-            stimulus_s: 0.1,
-            views: 1,
-            reference: Quality::new(4.0, 4, 1.0),
-            video: None,
-            jod: None,
-            warp: false,
-        };
+        let (scene, mut renderer) = corridor();
+        let plan = tiny_plan(ladder(&[(2.0, 1.0, 4e3, 2.0)]), vec![120.0]);
         let progress = ProgressBar::hidden();
         let held = calibrate_motion(&mut renderer, &scene, &plan, &progress).unwrap();
         let plan = MotionPlan { warp: true, ..plan };
