@@ -9,7 +9,7 @@ use super::frames::{LiveRenderer, Upload};
 use super::history::{FrameHistory, Sample, Spread};
 use super::hud::{self, HudChange, HudEdit, HudFacts};
 use super::input::{Command, InputState};
-use super::live_control::LiveControl;
+use super::live_control::{DisplayCosts, LiveControl};
 use super::path_clock::PathClock;
 use super::playback::Recording;
 use super::screen::{Drawn, Screen, UiFrame};
@@ -895,7 +895,8 @@ impl Running {
     }
 
     /// Takes a frame's hand-over or a warp's cost towards `--band refresh[:M]` (`observe`
-    /// gives it to the pending band), and sets the band once it is measured.
+    /// gives it to the pending band), and once they are measured sets the band and tells the
+    /// controller the costs (`perceptual` builds its own bands from them).
     fn observe_band(
         &mut self,
         observe: impl FnOnce(&mut DisplayBand) -> Option<Result<AlignedBand>>,
@@ -920,6 +921,15 @@ impl Running {
                     tmin_ms: b.tmin_ms,
                     tmax_ms: b.tmax_ms,
                 });
+                if let Mode::Live(live) = &mut self.mode {
+                    let costs = DisplayCosts {
+                        hand_over_ms: b.hand_over_ms,
+                        warp_ms: b.warp_ms,
+                    };
+                    if let Err(e) = live.control.set_display_costs(costs) {
+                        self.message = Some(format!("the display's costs: {e:#}"));
+                    }
+                }
             }
             Some(Err(e)) => {
                 self.display_band = None;

@@ -4,7 +4,8 @@
 
 use anyhow::{Result, bail};
 use steadyray_control::{
-    Band, Bounds, CONTROLLER_NAMES, Controller, FrameReport, Quality, ReportError, Setup, from_name,
+    Band, Bounds, CONTROLLER_NAMES, Controller, FrameReport, Quality, ReportError, Setup,
+    from_name, parse_options,
 };
 
 /// The controller in use and what it was built from.
@@ -16,6 +17,18 @@ pub struct LiveControl {
     band: Band,
     bounds: Bounds,
     controller: Box<dyn Controller>,
+    /// What handing a frame to the window and warping a refresh cost, once measured.
+    display_costs: Option<DisplayCosts>,
+}
+
+/// The window's measured costs around a frame (`--band refresh[:M]`, `--warp`): a
+/// `perceptual` controller is told them, as `bench` tells it, so that its bands leave room
+/// for them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DisplayCosts {
+    pub hand_over_ms: f64,
+    /// 0 where the window shows no warped refreshes.
+    pub warp_ms: f64,
 }
 
 impl LiveControl {
@@ -33,7 +46,22 @@ impl LiveControl {
             band,
             bounds,
             controller,
+            display_costs: None,
         })
+    }
+
+    /// Tells the controller (`perceptual`, the one that uses them) the window's measured
+    /// costs, unless its options give them; on an error nothing changes.
+    pub fn set_display_costs(&mut self, costs: DisplayCosts) -> Result<()> {
+        let before = self.display_costs.replace(costs);
+        if self.name() != "perceptual" {
+            return Ok(());
+        }
+        let rebuilt = self.rebuild(self.name(), self.band, self.bounds);
+        if rebuilt.is_err() {
+            self.display_costs = before;
+        }
+        rebuilt
     }
 
     /// The controller's name.
@@ -88,15 +116,30 @@ impl LiveControl {
         self.rebuild(self.name(), self.band, bounds)
     }
 
+    /// The options controller `name` is built with: those given for it on the command line,
+    /// and for `perceptual` the measured display costs its options do not give.
+    fn options_for(&self, name: &str) -> String {
+        let mut options = if name == self.initial.0 {
+            self.initial.1.clone()
+        } else {
+            String::new()
+        };
+        if let (Some(costs), "perceptual") = (self.display_costs, name) {
+            let given = parse_options(&options).unwrap_or_default();
+            for (key, ms) in [("hand_over", costs.hand_over_ms), ("warp", costs.warp_ms)] {
+                if !given.iter().any(|(k, _)| k == key) {
+                    options.push_str(&format!(" {key}={ms:.3}"));
+                }
+            }
+        }
+        options
+    }
+
     /// Replaces the controller; on an error nothing changes.
     fn rebuild(&mut self, name: &str, band: Band, bounds: Bounds) -> Result<()> {
         let start = bounds.clamp(self.quality());
-        let options = if name == self.initial.0 {
-            self.initial.1.as_str()
-        } else {
-            ""
-        };
-        self.controller = from_name(name, Setup::new(band, bounds, start)?, options)?;
+        let options = self.options_for(name);
+        self.controller = from_name(name, Setup::new(band, bounds, start)?, &options)?;
         self.band = band;
         self.bounds = bounds;
         Ok(())
@@ -182,5 +225,26 @@ mod tests {
         c.set_band(8.0, 12.0).unwrap();
         assert_eq!(c.band(), Band::new(8.0, 12.0).unwrap());
         assert_eq!(c.quality().depth, 4);
+    }
+
+    #[test]
+    fn perceptual_is_told_the_measured_costs_its_options_do_not_give() {
+        let mut c = control("fixed", "");
+        let costs = DisplayCosts {
+            hand_over_ms: 1.5,
+            warp_ms: 6.25,
+        };
+        c.set_display_costs(costs).unwrap();
+        assert_eq!(c.options_for("fixed"), "", "only perceptual takes them");
+        c.initial = ("perceptual".into(), "model=m.json hand_over=2".into());
+        assert_eq!(
+            c.options_for("perceptual"),
+            "model=m.json hand_over=2 warp=6.250"
+        );
+        c.initial.1 = "model=m.json".into();
+        assert_eq!(
+            c.options_for("perceptual"),
+            "model=m.json hand_over=1.500 warp=6.250"
+        );
     }
 }
