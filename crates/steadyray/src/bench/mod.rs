@@ -289,11 +289,12 @@ fn real_options(args: &BenchArgs) -> Result<Option<RealOptions>> {
     }
 }
 
-/// One controller to run, as named on the command line.
+/// One controller to run, as named on the command line (the window builds its controllers
+/// from one too).
 #[derive(Debug, PartialEq)]
-struct ControllerSpec {
-    name: String,
-    options: String,
+pub(crate) struct ControllerSpec {
+    pub(crate) name: String,
+    pub(crate) options: String,
 }
 
 impl ControllerSpec {
@@ -312,6 +313,16 @@ impl ControllerSpec {
     fn lacks(&self, key: &str) -> bool {
         self.name == "perceptual"
             && !parse_options(&self.options).is_ok_and(|o| o.iter().any(|(k, _)| k == key))
+    }
+
+    /// Tells a `perceptual` controller a measured cost (`hand_over`, `warp`) its options do
+    /// not give, as `key=ms`; whether it was told.
+    pub(crate) fn tell_measured(&mut self, key: &str, ms: f64) -> bool {
+        let lacks = self.lacks(key);
+        if lacks {
+            self.add_option(&format!("{key}={ms:.3}"));
+        }
+        lacks
     }
 
     /// Appends `key=value` to the options.
@@ -468,12 +479,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         None
     };
     if let Some(ms) = hand_over_ms {
-        for spec in specs.iter_mut().filter(|s| s.lacks_hand_over()) {
-            eprintln!(
-                "bench: {}: hand-over {ms:.2} ms (median at the start quality)",
-                spec.name
-            );
-            spec.add_option(&format!("hand_over={ms:.3}"));
+        for spec in specs.iter_mut() {
+            if spec.tell_measured("hand_over", ms) {
+                eprintln!(
+                    "bench: {}: hand-over {ms:.2} ms (median at the start quality)",
+                    spec.name
+                );
+            }
         }
     }
     // Warped refreshes between frames run on the same machine as the frames: their cost,
@@ -486,12 +498,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         Some(options) if needs_warp => {
             let period_s = options.display.period_ms() / 1000.0;
             let ms = measure_warp(source.as_mut(), start, args.warmup.max(5), period_s)?;
-            for spec in specs.iter_mut().filter(|s| s.lacks_warp()) {
-                eprintln!(
-                    "bench: {}: warped refresh {ms:.2} ms (median at the start quality)",
-                    spec.name
-                );
-                spec.add_option(&format!("warp={ms:.3}"));
+            for spec in specs.iter_mut() {
+                if spec.tell_measured("warp", ms) {
+                    eprintln!(
+                        "bench: {}: warped refresh {ms:.2} ms (median at the start quality)",
+                        spec.name
+                    );
+                }
             }
             Some(ms)
         }

@@ -2,10 +2,10 @@
 //! band or bounds takes effect at the next frame and starts from the quality in use, so a
 //! change never jumps the image to the starting quality.
 
+use crate::bench::ControllerSpec;
 use anyhow::{Result, bail};
 use steadyray_control::{
-    Band, Bounds, CONTROLLER_NAMES, Controller, FrameReport, Quality, ReportError, Setup,
-    from_name, parse_options,
+    Band, Bounds, CONTROLLER_NAMES, Controller, FrameReport, Quality, ReportError, Setup, from_name,
 };
 
 /// The controller in use and what it was built from.
@@ -119,20 +119,19 @@ impl LiveControl {
     /// The options controller `name` is built with: those given for it on the command line,
     /// and for `perceptual` the measured display costs its options do not give.
     fn options_for(&self, name: &str) -> String {
-        let mut options = if name == self.initial.0 {
-            self.initial.1.clone()
-        } else {
-            String::new()
+        let mut spec = ControllerSpec {
+            name: name.to_string(),
+            options: if name == self.initial.0 {
+                self.initial.1.clone()
+            } else {
+                String::new()
+            },
         };
-        if let (Some(costs), "perceptual") = (self.display_costs, name) {
-            let given = parse_options(&options).unwrap_or_default();
-            for (key, ms) in [("hand_over", costs.hand_over_ms), ("warp", costs.warp_ms)] {
-                if !given.iter().any(|(k, _)| k == key) {
-                    options.push_str(&format!(" {key}={ms:.3}"));
-                }
-            }
+        if let Some(costs) = self.display_costs {
+            spec.tell_measured("hand_over", costs.hand_over_ms);
+            spec.tell_measured("warp", costs.warp_ms);
         }
-        options
+        spec.options
     }
 
     /// Replaces the controller; on an error nothing changes.
