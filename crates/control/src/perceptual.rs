@@ -23,15 +23,13 @@
 //!    flicker between two refresh multiples. A target none of whose settings fits any more
 //!    (the cheapest predicted over its band) gives way at once.
 //!
-//! The band for a frame time T (so that a frame started at a refresh is handed over before
-//! the refresh T later, with `slack` of T kept free for timing noise) is
-//! [Tmax − `width`·T, Tmax] with Tmax = T·(1 − `slack`) − `hand_over` − (M − 1)·`warp` for
-//! T = M refreshes of the model's display, its lower edge raised where needed so that a frame
-//! in it does not make the refresh before: the same band as `bench --band refresh[:M]`
-//! (`steadyray_display::aligned_band`), where the M − 1 refreshes between frames show warped
-//! pictures made on the same machine (`bench --warp`; `warp` 0 without). The model's scores
-//! are of plain frames shown at T, not of warped refreshes. The
-//! setup's band is not used: the bands come from the model's frame times. The target starts at the longest
+//! The band for a frame time T of M refreshes of the model's display (so that a frame started
+//! at a refresh is handed over before the refresh T later, with `slack` of T kept free for
+//! timing noise, and the M − 1 refreshes between frames warped on the same machine under
+//! `bench --warp`) is `steadyray_display::shaped_band` with margin `slack` and width `width`:
+//! the band of `bench --band refresh[:M]` (`aligned_band`) at the defaults. The model's scores
+//! are of frames held for T, or warped between (`calibrate --motion --warp`). The setup's
+//! band is not used: the bands come from the model's frame times. The target starts at the longest
 //! frame time (a still picture is best shown at the highest quality).
 //!
 //! Why a controller of its own and not a target mode of `predictive`: the choice of a frame
@@ -52,6 +50,7 @@ use crate::motion_model::MotionModel;
 use crate::predictive::{Predictive, PredictiveParams};
 use crate::quality::Quality;
 use crate::report::{FrameReport, ReportError};
+use steadyray_display::{BandShape, DisplayConfig, SyncMode, shaped_band};
 
 /// Parameters of [`Perceptual`], with their option names and defaults.
 #[derive(Clone, Debug, PartialEq)]
@@ -187,26 +186,41 @@ impl Perceptual {
                   `steadyray calibrate --motion`"
                 .into(),
         })?;
+        let display = DisplayConfig::new(model.refresh_hz, SyncMode::Vsync).map_err(|e| {
+            ConfigError::BadOption {
+                key: "model".into(),
+                value: model.refresh_hz.to_string(),
+                why: format!("its display: {e}"),
+            }
+        })?;
+        let shape = BandShape {
+            margin: params.slack,
+            width: params.width,
+        };
         let bands = model
             .frame_times_ms
             .iter()
             .map(|&t| {
-                let refreshes = (t * model.refresh_hz / 1000.0).round().max(1.0);
-                let warps_ms = (refreshes - 1.0) * params.warp_ms;
-                let tmax = t * (1.0 - params.slack) - params.hand_over_ms - warps_ms;
-                // A frame done sooner makes the refresh before on its own.
-                let early = (refreshes - 1.0) * 1000.0 / model.refresh_hz - params.hand_over_ms;
-                let tmin = (tmax - params.width * t).max(if refreshes > 1.0 { early } else { 0.0 });
-                Band::new(tmin, tmax).map_err(|_| ConfigError::BadOption {
+                let refreshes = (t / display.period_ms()).round().max(1.0) as u32;
+                let no_band = |why: String| ConfigError::BadOption {
                     key: "hand_over".into(),
                     value: params.hand_over_ms.to_string(),
                     why: format!(
-                        "frame time {t} ms leaves no band after a {} ms hand-over, {warps_ms} \
-                         ms of warped refreshes, a slack of {} and a width of {} of the frame \
-                         time (or frames in it make the refresh before)",
-                        params.hand_over_ms, params.slack, params.width
+                        "frame time {t} ms leaves no band after a {} ms hand-over, warped \
+                         refreshes of {} ms, a slack of {} and a width of {} of the frame \
+                         time: {why}",
+                        params.hand_over_ms, params.warp_ms, params.slack, params.width
                     ),
-                })
+                };
+                let (tmin, tmax) = shaped_band(
+                    &display,
+                    refreshes,
+                    params.hand_over_ms,
+                    params.warp_ms,
+                    shape,
+                )
+                .map_err(|e| no_band(e.to_string()))?;
+                Band::new(tmin, tmax).map_err(|e| no_band(e.to_string()))
             })
             .collect::<Result<Vec<Band>, ConfigError>>()?;
         let target = bands.len() - 1;

@@ -14,6 +14,23 @@ pub const ALIGNED_MARGIN: f64 = 0.05;
 /// The band's width as a fraction of the frame interval (the paper's band is 5 ms of 20).
 pub const ALIGNED_WIDTH: f64 = 0.2;
 
+/// What an aligned band keeps free under its refresh for timing noise (`margin`) and how
+/// wide it is (`width`), as fractions of the frame interval: a controller that builds its own
+/// bands (`perceptual`) chooses its own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BandShape {
+    pub margin: f64,
+    pub width: f64,
+}
+
+impl BandShape {
+    /// [`ALIGNED_MARGIN`] and [`ALIGNED_WIDTH`]: the band of `bench --band` and `view`.
+    pub const ALIGNED: BandShape = BandShape {
+        margin: ALIGNED_MARGIN,
+        width: ALIGNED_WIDTH,
+    };
+}
+
 /// The band [Tmin, Tmax] of render times for frames shown every `multiple` refreshes, each
 /// frame handed over in `hand_over_ms` and followed, when the refreshes between frames are
 /// warped (0 when they are not), by `multiple` − 1 warps of `warp_ms` each: the frame
@@ -31,6 +48,17 @@ pub fn aligned_band(
     hand_over_ms: f64,
     warp_ms: f64,
 ) -> Result<(f64, f64), DisplayError> {
+    shaped_band(config, multiple, hand_over_ms, warp_ms, BandShape::ALIGNED)
+}
+
+/// [`aligned_band`] with another margin and width (`shape`).
+pub fn shaped_band(
+    config: &DisplayConfig,
+    multiple: u32,
+    hand_over_ms: f64,
+    warp_ms: f64,
+    shape: BandShape,
+) -> Result<(f64, f64), DisplayError> {
     for (name, value) in [("hand-over", hand_over_ms), ("warp", warp_ms)] {
         if !(value.is_finite() && value >= 0.0) {
             return Err(DisplayError::BadFrameTime {
@@ -47,8 +75,8 @@ pub fn aligned_band(
     let multiple = multiple.max(1);
     let interval = f64::from(multiple) * period;
     let warps_ms = f64::from(multiple - 1) * warp_ms;
-    let tmax = interval * (1.0 - ALIGNED_MARGIN) - hand_over_ms - warps_ms;
-    let mut tmin = tmax - ALIGNED_WIDTH * interval;
+    let tmax = interval * (1.0 - shape.margin) - hand_over_ms - warps_ms;
+    let mut tmin = tmax - shape.width * interval;
     if tmin <= 0.0 {
         return Err(DisplayError::BadFrameTime {
             name: "hand-over and warps",

@@ -34,7 +34,7 @@ pub mod stats;
 pub mod timeline;
 pub mod viewing;
 
-pub use aligned::aligned_band;
+pub use aligned::{BandShape, aligned_band, shaped_band};
 pub use clock::{FrameSlot, MAX_DURATION_S, PREDICTION_FRAMES, RealClock};
 pub use config::{DisplayConfig, MAX_REFRESH_HZ, SyncMode, VrrRange};
 pub use error::DisplayError;
