@@ -7,6 +7,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
 
+mod support;
+
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
 fn scratch(name: &str) -> PathBuf {
@@ -295,14 +297,15 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
 
 /// With warped refreshes, a band of two refreshes a frame leaves room for the warp that
 /// shows the refresh between two frames, its cost measured before the runs; a band of one
-/// refresh has no refresh between frames and leaves none.
+/// refresh has no refresh between frames and leaves none. The runs without the history
+/// (`--temporal both`) show no warps and keep the band without them.
 #[test]
 fn a_warped_band_leaves_room_for_the_warps_between_frames() {
     let out = scratch("warped-band");
-    let run = |band: &str| -> Value {
+    let run_with = |band: &str, temporal: &str| -> Value {
         let output = tiny_cpu_bench()
             .args(["--controllers", "fixed", "--no-best-fixed"])
-            .args(["--temporal", "on", "--warp", "--band", band, "--out"])
+            .args(["--temporal", temporal, "--warp", "--band", band, "--out"])
             .arg(&out)
             .output()
             .unwrap();
@@ -310,6 +313,7 @@ fn a_warped_band_leaves_room_for_the_warps_between_frames() {
         assert!(output.status.success(), "{stderr}");
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
     };
+    let run = |band: &str| run_with(band, "on");
     let period = 1000.0 / 60.0;
     let summary = run("refresh:2");
     let aligned = &summary["aligned_band"];
@@ -327,6 +331,28 @@ fn a_warped_band_leaves_room_for_the_warps_between_frames() {
         (tmax - tmin - 0.2 * 2.0 * period).abs() < 1e-9,
         "{tmin} {tmax}"
     );
+    assert_eq!(summary["controllers"][0]["band_ms"], summary["band_ms"]);
+    assert!(aligned.get("plain_band_ms").is_none(), "{aligned}");
+
+    let both = run_with("refresh:2", "both");
+    let warp = both["aligned_band"]["warp_ms"].as_f64().unwrap();
+    let plain = &both["aligned_band"]["plain_band_ms"];
+    let runs = both["controllers"].as_array().unwrap();
+    assert_eq!(runs.len(), 2, "{both}");
+    assert!(!runs[0]["name"].as_str().unwrap().contains("+temporal"));
+    assert_eq!(&runs[0]["band_ms"], plain);
+    assert_eq!(runs[1]["band_ms"], both["band_ms"]);
+    for k in 0..2 {
+        let (plain, warped) = (
+            plain[k].as_f64().unwrap(),
+            both["band_ms"][k].as_f64().unwrap(),
+        );
+        assert!(
+            (plain - warped - warp).abs() < 1e-9,
+            "{plain} {warped} {warp}"
+        );
+    }
+
     let summary = run("refresh");
     assert_eq!(summary["aligned_band"]["warp_ms"], 0.0);
     std::fs::remove_dir_all(&out).unwrap();
@@ -336,44 +362,10 @@ fn a_warped_band_leaves_room_for_the_warps_between_frames() {
 /// before the runs), so that its bands of two or more refreshes leave room for the warps.
 #[test]
 fn a_perceptual_controller_is_told_the_warps_cost() {
-    use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
-    use steadyray_control::{Metric, MotionModel};
     let out = scratch("perceptual-warp");
-    let frame_times_ms = vec![1000.0 / 60.0, 2000.0 / 60.0];
-    let model = MotionModel {
-        metric: Metric::Jod,
-        scene: "corridor".into(),
-        resolution: [32, 18],
-        refresh_hz: 60.0,
-        stimulus_s: 0.5,
-        warped: false,
-        viewing: Value::Null,
-        ladder: Ladder {
-            scene: "corridor".into(),
-            resolution: [32, 18],
-            reference: Reference {
-                spp: 16.0,
-                depth: 16,
-                scale: 1.0,
-            },
-            views: 1,
-            temporal_frames: None,
-            points: vec![LadderPoint {
-                spp: 1.0,
-                depth: 4,
-                scale: 1.0,
-                rays: 600.0,
-                ms: 1.0,
-                flip: 0.1,
-            }],
-        },
-        speeds_deg_s: vec![0.0],
-        scores: vec![vec![vec![8.0]; 2]],
-        frame_times_ms,
-    };
     std::fs::create_dir_all(&out).unwrap();
     let model_path = out.join("motion.json");
-    std::fs::write(&model_path, serde_json::to_string(&model).unwrap()).unwrap();
+    support::write_one_point_model(&model_path, [8.0, 8.0]);
     let output = tiny_cpu_bench()
         .arg("--controllers")
         .arg(format!("perceptual:model={}", model_path.display()))

@@ -11,6 +11,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
+mod support;
+
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
 fn required() -> bool {
@@ -349,6 +351,50 @@ fn cpu_window_shows_warped_refreshes_between_frames() {
 #[test]
 fn gpu_window_shows_warped_refreshes_between_frames() {
     window_shows_warped_refreshes_between_frames("gpu");
+}
+
+/// A `perceptual` controller that holds one refresh a frame under `--band refresh:2 --warp`
+/// shows no warped refresh, and the band still gets the warps' cost: the window times warps
+/// it does not show (and tells the controller, as it does the hand-over).
+#[test]
+fn the_band_measures_warps_that_no_refresh_shows() {
+    let xvfb = match Xvfb::start() {
+        Ok(x) => x,
+        Err(why) => skip!("no X server for the window test: {why}"),
+    };
+    let dir = scratch("unshown-warps");
+    let model = dir.join("motion.json");
+    // One refresh a frame scores far above two, and the controller moves to it at once.
+    support::write_one_point_model(&model, [9.0, 5.0]);
+    let controller = format!("perceptual:model={};hold_ms=0", model.display());
+    let mut args = vec![
+        "view",
+        "--backend",
+        "cpu",
+        "--controller",
+        &controller,
+        "--band",
+        "refresh:2",
+        "--warp",
+    ];
+    let mut window = window_args();
+    *window.last_mut().unwrap() = "40".into();
+    args.extend(window.iter().map(String::as_str));
+    let out = run(Some(&xvfb.display), &args);
+    let stderr = text(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(out.status.success(), "view failed:\n{stderr}");
+    let summary: Value = serde_json::from_str(text(&out.stdout).trim()).unwrap();
+    assert_eq!(summary["frames"], 40, "{summary}");
+    assert_eq!(summary["warped_refreshes"], 0, "{summary}");
+    let warp_ms = stderr
+        .split(", warp ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no warp in the band's line: {stderr}"));
+    assert!(warp_ms > 0.0, "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

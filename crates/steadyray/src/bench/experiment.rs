@@ -120,6 +120,7 @@ pub fn run_controller(
     let flips: Vec<f64> = rows.iter().filter_map(|r| r.flip).collect();
     Ok(ControllerRun {
         name: name.to_string(),
+        band: sweep.band,
         rows,
         summary,
         flip: flip_stats(&flips),

@@ -66,8 +66,10 @@ pub struct BenchArgs {
     /// With --clock real: `refresh` derives the band from the display instead of --tmin and
     /// --tmax: render times whose frames, handed over, make every refresh (`refresh:M`:
     /// every M-th), with the hand-over measured before the runs; with --warp and M of 2 or
-    /// more the band also leaves room for the M − 1 warped refreshes after each frame, their
-    /// cost measured before the runs too (see `steadyray_display::aligned_band`).
+    /// more the band of the runs with the history also leaves room for the M − 1 warped
+    /// refreshes after each frame, their cost measured before the runs too (see
+    /// `steadyray_display::aligned_band`); the runs without it (`--temporal both`) show no
+    /// warps and keep the band without them.
     #[arg(long, value_name = "refresh[:M]", conflicts_with_all = ["tmin", "tmax"])]
     pub band: Option<RefreshBand>,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
@@ -289,9 +291,19 @@ fn real_options(args: &BenchArgs) -> Result<Option<RealOptions>> {
     }
 }
 
+/// The runs of one temporal mode: with the history (and, with `--warp`, its warped
+/// refreshes) or without, their band and their controllers (one per `--controllers` entry,
+/// in order).
+struct Arm {
+    temporal: bool,
+    band: Band,
+    setup: Setup,
+    controllers: Vec<Box<dyn Controller>>,
+}
+
 /// One controller to run, as named on the command line (the window builds its controllers
 /// from one too).
-#[derive(Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct ControllerSpec {
     pub(crate) name: String,
     pub(crate) options: String,
@@ -494,11 +506,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let needs_warp = args.warp
         && (args.band.is_some_and(|b| b.multiple > 1)
             || specs.iter().any(ControllerSpec::lacks_warp));
+    let modes = args.temporal.modes();
+    // The runs without the history show no warps: their controllers are not told of any.
+    let mut warped_specs = specs.clone();
     let measured_warp_ms = match &real {
         Some(options) if needs_warp => {
             let period_s = options.display.period_ms() / 1000.0;
             let ms = measure_warp(source.as_mut(), start, args.warmup.max(5), period_s)?;
-            for spec in specs.iter_mut() {
+            for spec in warped_specs.iter_mut() {
                 if spec.tell_measured("warp", ms) {
                     eprintln!(
                         "bench: {}: warped refresh {ms:.2} ms (median at the start quality)",
@@ -510,8 +525,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
         _ => None,
     };
-    let (band, aligned) = match (&args.band, &real, hand_over_ms) {
-        (None, _, _) => (Band::new(args.tmin, args.tmax)?, None),
+    // The band of the runs that warp, and of those that do not (the same band unless a
+    // display-aligned band leaves room for warps).
+    let (band, plain_band, aligned) = match (&args.band, &real, hand_over_ms) {
+        (None, _, _) => {
+            let band = Band::new(args.tmin, args.tmax)?;
+            (band, band, None)
+        }
         (Some(_), None, _) => bail!("--band refresh needs --clock real"),
         (Some(_), Some(_), None) => bail!("the hand-over was not measured"),
         (Some(choice), Some(options), Some(hand_over_ms)) => {
@@ -519,8 +539,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 Some(ms) if choice.multiple > 1 => ms,
                 _ => 0.0,
             };
-            let (tmin, tmax) =
-                aligned_band(&options.display, choice.multiple, hand_over_ms, warp_ms)?;
+            let aligned = |warp_ms| -> Result<Band> {
+                let (tmin, tmax) =
+                    aligned_band(&options.display, choice.multiple, hand_over_ms, warp_ms)?;
+                Ok(Band::new(tmin, tmax)?)
+            };
+            let band = aligned(warp_ms)?;
+            let plain_band = aligned(0.0)?;
+            let (tmin, tmax) = (band.tmin_ms(), band.tmax_ms());
             let costs = if warp_ms > 0.0 {
                 let warps = choice.multiple - 1;
                 format!(
@@ -529,21 +555,48 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             } else {
                 format!("hand-over {hand_over_ms:.2} ms (median")
             };
+            // Runs without the history in a band of their own.
+            let plain_runs = plain_band != band && modes.contains(&false);
+            let plain = if plain_runs {
+                format!(
+                    "; runs without the history (no warps): [{:.2}, {:.2}] ms",
+                    plain_band.tmin_ms(),
+                    plain_band.tmax_ms()
+                )
+            } else {
+                String::new()
+            };
             eprintln!(
-                "bench: --band {choice}: {costs} at the start quality), band [{tmin:.2}, {tmax:.2}] ms"
+                "bench: --band {choice}: {costs} at the start quality), band [{tmin:.2}, {tmax:.2}] ms{plain}"
             );
             (
-                Band::new(tmin, tmax)?,
+                band,
+                plain_band,
                 Some(report::AlignedBand {
                     refreshes: choice.multiple,
                     hand_over_ms,
                     warp_ms,
+                    plain_band_ms: plain_runs.then(|| [plain_band.tmin_ms(), plain_band.tmax_ms()]),
                 }),
             )
         }
     };
-    let (setup, controllers) = build(band, &specs)?;
-    let mut controllers: Vec<_> = specs.iter().zip(controllers).collect();
+    // One set of controllers per arm: a run with the history and its warps, or without.
+    let mut arms = Vec::new();
+    for &temporal in modes {
+        let warps = temporal && args.warp;
+        let (arm_band, arm_specs) = match warps {
+            true => (band, &warped_specs),
+            false => (plain_band, &specs),
+        };
+        let (setup, controllers) = build(arm_band, arm_specs)?;
+        arms.push(Arm {
+            temporal,
+            band: arm_band,
+            setup,
+            controllers,
+        });
+    }
     let real = match real {
         Some(options) => {
             let duration_s = args.duration.unwrap_or_else(|| source.path_duration_s());
@@ -589,7 +642,6 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         Some(r) => (r.duration_s * 1000.0) as u64,
     };
     let unit = if real.is_some() { "ms shown" } else { "frames" };
-    let modes = args.temporal.modes();
     let progress = ProgressBar::new(per_run * (specs.len() * modes.len()) as u64);
     progress.set_style(
         ProgressStyle::with_template(&format!(
@@ -674,16 +726,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         references: references.as_ref(),
         record: args.record.is_some(),
     };
-    // A temporal run under the real clock warps its refreshes without a new frame with --warp.
+    // A temporal run under the real clock warps its refreshes without a new frame with
+    // --warp; each arm runs in its own band.
     let run_one = |source: &mut dyn FrameSource,
                    controller: &mut dyn Controller,
                    label: &str,
-                   temporal: bool|
+                   (band, temporal): (Band, bool)|
      -> Result<ControllerRun> {
         match &real {
-            None => run_controller(source, controller, label, &sweep, capture, &progress),
+            None => {
+                let sweep = Sweep { band, ..sweep };
+                run_controller(source, controller, label, &sweep, capture, &progress)
+            }
             Some(r) => {
                 let r = RealSweep {
+                    band,
                     warp: args.warp && temporal,
                     ..*r
                 };
@@ -694,45 +751,51 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut runs: Vec<ControllerRun> = Vec::new();
     // The best fixed quality runs once per temporal mode, after the first fixed one.
     let mut best_fixed_due = vec![!args.no_best_fixed; modes.len()];
-    for (spec, controller) in &mut controllers {
-        let label = match spec.name.as_str() {
-            "fixed" => format!("fixed {}", quality_label(&controller.quality(), &bounds)),
-            _ => spec.label(),
-        };
-        for (&temporal, best_due) in modes.iter().zip(&mut best_fixed_due) {
-            let suffix = match (temporal, args.warp) {
+    for (i, spec) in specs.iter().enumerate() {
+        for (arm, best_due) in arms.iter_mut().zip(&mut best_fixed_due) {
+            let mode = (arm.band, arm.temporal);
+            let controller = &mut arm.controllers[i];
+            let label = match spec.name.as_str() {
+                "fixed" => format!("fixed {}", quality_label(&controller.quality(), &bounds)),
+                _ => spec.label(),
+            };
+            let suffix = match (arm.temporal, args.warp) {
                 (false, _) => "",
                 (true, false) => " +temporal",
                 (true, true) => " +temporal +warp",
             };
-            source.set_temporal(temporal)?;
+            source.set_temporal(arm.temporal)?;
             let label = format!("{label}{suffix}");
             runs.push(keep(run_one(
                 source.as_mut(),
                 controller.as_mut(),
                 &label,
-                temporal,
+                mode,
             )?)?);
             if spec.name == "fixed" && *best_due {
                 *best_due = false;
                 progress.inc_length(per_run);
+                let arm_sweep = Sweep {
+                    band: arm.band,
+                    ..sweep
+                };
                 let best =
-                    search_best_fixed(source.as_mut(), &sweep, args.search_views, &progress)?;
+                    search_best_fixed(source.as_mut(), &arm_sweep, args.search_views, &progress)?;
                 let mut fixed = from_name(
                     "fixed",
                     Setup {
                         start: best,
-                        ..setup
+                        ..arm.setup
                     },
                     "",
                 )?;
                 let label = format!("best fixed {}{suffix}", quality_label(&best, &bounds));
-                source.set_temporal(temporal)?;
+                source.set_temporal(arm.temporal)?;
                 runs.push(keep(run_one(
                     source.as_mut(),
                     fixed.as_mut(),
                     &label,
-                    temporal,
+                    mode,
                 )?)?);
             }
         }

@@ -416,6 +416,7 @@ pub fn run_controller_real(
     let summary = summarize(&records, sweep.band, sweep.bounds.max_quality(), None);
     Ok(ControllerRun {
         name: name.to_string(),
+        band: sweep.band,
         rows,
         summary,
         flip: None,

@@ -77,6 +77,8 @@ impl FrameRow {
 pub struct ControllerRun {
     /// The name in reports, e.g. `predictive` or `fixed(R=16)`.
     pub name: String,
+    /// The band it ran in.
+    pub band: Band,
     pub rows: Vec<FrameRow>,
     pub summary: RunSummary,
     /// Mean and 95th percentile of the measured frames' FLIP (`bench --quality`).

@@ -69,11 +69,17 @@ pub struct AlignedBand {
     /// The measured warped refresh the band leaves room for after each frame, once per
     /// refresh between two frames, ms (0 without --warp or at one refresh a frame).
     pub warp_ms: f64,
+    /// The band of the runs without the history (`--temporal both`), which show no warps
+    /// and so leave no room for them; absent where it is `band_ms`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plain_band_ms: Option<[f64; 2]>,
 }
 
 #[derive(Serialize)]
 struct ControllerEntry<'a> {
     name: &'a str,
+    /// The band the run held, ms.
+    band_ms: [f64; 2],
     #[serde(flatten)]
     summary: &'a RunSummary,
     /// Mean FLIP of the measured frames (`bench --quality`).
@@ -175,6 +181,7 @@ pub fn write_summary(
             .iter()
             .map(|r| ControllerEntry {
                 name: &r.name,
+                band_ms: [r.band.tmin_ms(), r.band.tmax_ms()],
                 summary: &r.summary,
                 flip_mean: r.flip.map(|f| f.0),
                 flip_p95: r.flip.map(|f| f.1),

@@ -159,13 +159,16 @@ pub struct JodPoint {
     pub jod: f64,
 }
 
-/// The scored runs of a merged summary.
+/// A `band_ms` pair.
+fn band_of(value: &Value) -> Option<[f64; 2]> {
+    let b = value.get("band_ms")?.as_array()?;
+    Some([b.first()?.as_f64()?, b.get(1)?.as_f64()?])
+}
+
+/// The scored runs of a merged summary, each in its own band (summaries before runs had
+/// one: the bench's).
 fn plot_points(summary: &Value) -> Result<Vec<JodPoint>> {
-    let band = summary
-        .get("band_ms")
-        .and_then(Value::as_array)
-        .and_then(|b| Some([b.first()?.as_f64()?, b.get(1)?.as_f64()?]))
-        .context("no band_ms")?;
+    let band = band_of(summary).context("no band_ms")?;
     let controllers = summary
         .get("controllers")
         .and_then(Value::as_array)
@@ -175,7 +178,7 @@ fn plot_points(summary: &Value) -> Result<Vec<JodPoint>> {
         .filter_map(|c| {
             Some(JodPoint {
                 name: c.get("name")?.as_str()?.to_string(),
-                band_ms: band,
+                band_ms: band_of(c).unwrap_or(band),
                 displayed_fps: c.get("displayed_fps")?.as_f64()?,
                 jod: c.get("jod")?.as_f64()?,
             })
@@ -207,26 +210,20 @@ struct Scored {
     entry: Value,
 }
 
-/// The runs of a merged summary that have a JOD score, labelled with the bench's band.
+/// The runs of a merged summary that have a JOD score, labelled with their band (the
+/// bench's in summaries before runs had their own).
 fn scored_methods(summary: &Value) -> Vec<Scored> {
-    let band = summary
-        .get("band_ms")
-        .and_then(Value::as_array)
-        .map(|b| {
-            let v: Vec<String> = b
-                .iter()
-                .filter_map(Value::as_f64)
-                .map(|x| format!("{x:.3}"))
-                .collect();
-            v.join("-")
-        })
-        .unwrap_or_default();
+    let bench_band = band_of(summary);
     summary
         .get("controllers")
         .and_then(Value::as_array)
         .into_iter()
         .flatten()
         .filter_map(|c| {
+            let band = band_of(c)
+                .or(bench_band)
+                .map(|[tmin, tmax]| format!("{tmin:.3}-{tmax:.3}"))
+                .unwrap_or_default();
             Some(Scored {
                 label: format!(
                     "{} [{band}]",
@@ -372,6 +369,36 @@ mod tests {
             0.8
         ));
         assert_eq!(spearman(&[1.0, 1.0, 1.0], &[1.0, 2.0, 3.0]), None);
+    }
+
+    /// A run's own band (the runs without the history of `bench --temporal both --warp
+    /// --band refresh:M` have one of their own) labels it; older summaries give the bench's.
+    #[test]
+    fn each_run_is_labelled_and_plotted_with_its_own_band() {
+        let summary = json!({
+            "band_ms": [17.5, 24.0],
+            "controllers": [
+                {"name": "predictive", "band_ms": [23.8, 30.5], "jod": 8.0, "displayed_fps": 30.0},
+                {"name": "predictive +temporal +warp", "jod": 9.0, "displayed_fps": 30.0}
+            ]
+        });
+        let labels: Vec<String> = scored_methods(&summary)
+            .into_iter()
+            .map(|m| m.label)
+            .collect();
+        assert_eq!(
+            labels,
+            [
+                "predictive [23.800-30.500]",
+                "predictive +temporal +warp [17.500-24.000]"
+            ]
+        );
+        let bands: Vec<[f64; 2]> = plot_points(&summary)
+            .unwrap()
+            .into_iter()
+            .map(|p| p.band_ms)
+            .collect();
+        assert_eq!(bands, [[23.8, 30.5], [17.5, 24.0]]);
     }
 
     #[test]

@@ -143,6 +143,8 @@ struct Live {
     /// `--band refresh:M`), and how many of the last frame's are still to show.
     warps: u32,
     warps_due: u32,
+    /// Whether the history holds a frame a refresh could show warped.
+    warpable: bool,
     /// The monitor's refresh interval, ms (60 Hz where it does not say).
     refresh_ms: f64,
     /// The last frame's motion on screen, °/s (the HUD shows it through the warps too).
@@ -159,8 +161,26 @@ impl Live {
             self.renderer.set_temporal(settings)?;
             self.history = want;
             self.warps_due = 0;
+            self.warpable = false;
         }
         Ok(())
+    }
+
+    /// Times a warp of the last frame to `camera` that no refresh shows, for a band that
+    /// waits for the warps' cost while the controller shows none (`perceptual` holding one
+    /// refresh a frame): None when there is no frame to warp, or the window shows warps.
+    fn time_unshown_warp(
+        &mut self,
+        camera: &Camera,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Option<f64>> {
+        if self.warps == 0 || !self.warpable || self.warps_after_frame() > 0 {
+            return Ok(None);
+        }
+        let warping = Instant::now();
+        self.renderer.warped(camera, device, queue)?;
+        Ok(Some(warping.elapsed().as_secs_f64() * 1e3))
     }
 
     /// The refreshes to show warped after a frame: none without `--warp` or a history;
@@ -201,6 +221,7 @@ impl Live {
             return Err(anyhow!("waiting for the GPU failed: {e}"));
         }
         let stats = self.renderer.render(&camera, scene_time_s, &settings)?;
+        self.warpable = self.history.is_some();
         let (render_ms, source) = controller_time(&stats);
         if source != TimingSource::GpuTimestamps && timing.starts_with("GPU timestamps") {
             log::warn!(
@@ -539,6 +560,7 @@ impl Running {
                     history: None,
                     warps: plan.warps,
                     warps_due: 0,
+                    warpable: false,
                     refresh_ms: 1000.0 / refresh_hz.unwrap_or(FALLBACK_REFRESH_HZ),
                     speed_deg_s: None,
                 };
@@ -757,6 +779,11 @@ impl Running {
         let look = self.input.take_look();
         let movement = self.input.movement();
         let mut warp_ms = None;
+        let mut unshown_warp_ms = None;
+        let band_wants_warp = self
+            .display_band
+            .as_ref()
+            .is_some_and(DisplayBand::wants_warp);
         let mut warps_due = 0;
         let warps_per_frame = match &self.mode {
             Mode::Live(live) => live.warps_after_frame(),
@@ -778,6 +805,10 @@ impl Running {
                     warp_ms = Some(warping.elapsed().as_secs_f64() * 1e3);
                     (image, None, None, facts)
                 } else {
+                    if band_wants_warp {
+                        unshown_warp_ms =
+                            live.time_unshown_warp(&camera, &self.device, &self.queue)?;
+                    }
                     let at = (camera, scene_time_s, t_s);
                     let sample = live.render_frame(at, full, &self.device, &mut self.timing)?;
                     live.warps_due = live.warps_after_frame();
@@ -863,6 +894,8 @@ impl Running {
         self.last_size = last_size;
         if let Some(ms) = warp_ms {
             self.all_warp_ms.push(ms);
+        }
+        if let Some(ms) = warp_ms.or(unshown_warp_ms) {
             self.observe_band(|band| band.observe_warp(ms));
         }
         let presented = Instant::now();

@@ -40,9 +40,14 @@ impl Costs {
         }
     }
 
+    /// Whether more are needed before the median.
+    fn wanted(&self) -> bool {
+        self.ms.len() < HAND_OVER_FRAMES
+    }
+
     /// The median, once enough are measured.
     fn median(&self) -> Option<f64> {
-        if self.ms.len() < HAND_OVER_FRAMES {
+        if self.wanted() {
             return None;
         }
         quantile(&self.ms, 0.5)
@@ -84,6 +89,12 @@ impl DisplayBand {
         self.band()
     }
 
+    /// Whether the band still waits for warped refreshes to be measured: a window whose
+    /// controller shows none (`perceptual` at one refresh a frame) times unshown ones.
+    pub fn wants_warp(&self) -> bool {
+        self.warp.as_ref().is_some_and(Costs::wanted)
+    }
+
     /// Takes one warped refresh's cost, as [`DisplayBand::observe`] a hand-over.
     pub fn observe_warp(&mut self, warp_ms: f64) -> Option<Result<AlignedBand>> {
         if let Some(warp) = &mut self.warp {
@@ -123,6 +134,7 @@ mod tests {
     #[test]
     fn the_band_comes_after_the_measured_frames_and_fits_the_refresh() {
         let mut band = DisplayBand::new(1, Some(60.0), false).unwrap();
+        assert!(!band.wants_warp());
         for _ in 0..2 * HAND_OVER_FRAMES - 1 {
             assert!(band.observe(1.0).is_none());
         }
@@ -153,11 +165,13 @@ mod tests {
         let mut band = DisplayBand::new(2, Some(60.0), true).unwrap();
         // Every hand-over measured but no warp yet: no band.
         assert!(measured(&mut band, 2.0).is_none());
+        assert!(band.wants_warp());
         let b = (0..2 * HAND_OVER_FRAMES)
             .find_map(|_| band.observe_warp(5.0))
             .unwrap()
             .unwrap();
         assert_eq!((b.hand_over_ms, b.warp_ms), (2.0, 5.0));
+        assert!(!band.wants_warp());
         // 2 refreshes · 0.95 − the hand-over − one warp.
         assert!((b.tmax_ms - (2000.0 / 60.0 * 0.95 - 2.0 - 5.0)).abs() < 1e-9);
         assert!((b.tmax_ms - b.tmin_ms - 2000.0 / 60.0 * 0.2).abs() < 1e-9);
