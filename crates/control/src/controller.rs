@@ -33,6 +33,13 @@ pub trait Controller: Send + fmt::Debug {
     /// Back to the starting quality with an empty history (e.g. between benchmark runs).
     fn reset(&mut self);
 
+    /// Holds `band` from the next frame on, keeping what the controller has learned (a live
+    /// view's band, measured from its display or edited, should not cost the cost model it
+    /// fitted); the next quality is the one in use, or (`predictive`) already planned for
+    /// the new band from the last frame's measurements. A controller that derives its bands
+    /// from elsewhere (`perceptual`: its model's frame times) keeps its own.
+    fn set_band(&mut self, band: Band);
+
     /// The frame time the controller has chosen to deliver, ms, for a controller that
     /// chooses the frame rate itself (`perceptual`); `None` for one that holds the band it
     /// was given.

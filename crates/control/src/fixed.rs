@@ -1,5 +1,6 @@
 //! `fixed`: no control, the paper's baseline.
 
+use crate::band::Band;
 use crate::controller::{Controller, Setup, accept_time};
 use crate::error::ConfigError;
 use crate::quality::Quality;
@@ -34,6 +35,9 @@ impl Controller for Fixed {
         accept_time(report)?;
         Ok(self.quality)
     }
+
+    /// A fixed quality holds no band.
+    fn set_band(&mut self, _band: Band) {}
 
     fn reset(&mut self) {}
 }

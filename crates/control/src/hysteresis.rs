@@ -16,6 +16,7 @@
 //! - Hitch: a frame over Tmax and more than `hitch_ratio` times the previous frame is held
 //!   (no change) unless the next frame confirms it, so a one-frame spike costs no quality.
 
+use crate::band::Band;
 use crate::controller::{Controller, Setup, accept_time, parse_option, within};
 use crate::error::ConfigError;
 use crate::quality::{Bounds, Knob, KnobOrder, Quality};
@@ -258,6 +259,15 @@ impl Controller for Hysteresis {
 
     fn reset(&mut self) {
         *self = Self::fresh(self.setup, self.params.clone());
+    }
+
+    /// The runs over and under the band's edges start again: they were counted against
+    /// the old band.
+    fn set_band(&mut self, band: Band) {
+        self.setup.band = band;
+        self.over_run = 0;
+        self.headroom_run = 0;
+        self.headroom_sum = 0.0;
     }
 }
 

@@ -366,4 +366,7 @@ impl Controller for Perceptual {
     fn target_frame_ms(&self) -> Option<f64> {
         Some(self.target_ms())
     }
+
+    /// Its bands are its model's frame times': a band from outside changes none of them.
+    fn set_band(&mut self, _band: Band) {}
 }

@@ -661,6 +661,10 @@ impl Controller for Predictive {
         Ok(self.quality)
     }
 
+    fn set_band(&mut self, band: Band) {
+        self.retarget(band);
+    }
+
     fn reset(&mut self) {
         self.quality = self.setup.start;
         self.cost = CostModel::new(self.params.cost.clone());
@@ -694,6 +698,36 @@ mod tests {
             quality: q,
             speed_deg_s: 0.0,
         }
+    }
+
+    /// A new band (a live view's, once measured) keeps the fitted cost model: the next
+    /// frame is already planned for it, where a controller built anew at the same quality
+    /// would still hold that quality.
+    #[test]
+    fn a_new_band_keeps_the_cost_model_and_plans_for_it_at_once() {
+        let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+        let mut c = Predictive::new(setup, PredictiveParams::default()).unwrap();
+        for _ in 0..30 {
+            let r = frame(c.quality(), 1e6);
+            c.observe(&r).unwrap();
+        }
+        let settled = c.quality();
+        assert!(Band::PAPER.contains(frame(settled, 1e6).tp_ms), "{settled}");
+        let longer = Band::new(30.0, 40.0).unwrap();
+        c.set_band(longer);
+        let next = c.quality();
+        assert!(next.level() > settled.level(), "{settled} -> {next}");
+        assert!(longer.contains(frame(next, 1e6).tp_ms), "{next}");
+        let rebuilt = Predictive::new(
+            Setup {
+                band: longer,
+                start: settled,
+                ..setup
+            },
+            PredictiveParams::default(),
+        )
+        .unwrap();
+        assert_eq!(rebuilt.quality(), settled);
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! on whole numbers, so with a coarse knob and a 1 ms timer the time oscillates across a
 //! narrow band: the defect the paper reports, reproduced on purpose.
 
-use crate::band::Position;
+use crate::band::{Band, Position};
 use crate::controller::{Controller, Setup, accept_time, parse_option};
 use crate::error::ConfigError;
 use crate::quality::{Bounds, Knob, Quality};
@@ -147,12 +147,15 @@ impl Controller for Step {
     fn reset(&mut self) {
         self.quality = self.setup.start;
     }
+
+    fn set_band(&mut self, band: Band) {
+        self.setup.band = band;
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::band::Band;
 
     fn report(tp_ms: f64, q: Quality) -> FrameReport {
         FrameReport {

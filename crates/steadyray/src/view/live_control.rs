@@ -1,6 +1,7 @@
 //! The controller of the live view, switched and retuned while it runs: a new controller,
 //! band or bounds takes effect at the next frame and starts from the quality in use, so a
-//! change never jumps the image to the starting quality.
+//! change never jumps the image to the starting quality. A new band keeps the controller
+//! and what it has learned (its cost model); a new controller or new bounds build one.
 
 use crate::bench::ControllerSpec;
 use anyhow::{Result, bail};
@@ -104,10 +105,13 @@ impl LiveControl {
         self.rebuild(name, self.band, self.bounds)
     }
 
-    /// Uses the band [`tmin_ms`, `tmax_ms`] from the next frame on.
+    /// Uses the band [`tmin_ms`, `tmax_ms`] from the next frame on, with the same controller
+    /// and what it has learned (`Controller::set_band`).
     pub fn set_band(&mut self, tmin_ms: f64, tmax_ms: f64) -> Result<()> {
         let band = Band::new(tmin_ms, tmax_ms)?;
-        self.rebuild(self.name(), band, self.bounds)
+        self.controller.set_band(band);
+        self.band = band;
+        Ok(())
     }
 
     /// Uses `bounds` from the next frame on; the quality in use is clamped into them.
@@ -224,6 +228,38 @@ mod tests {
         c.set_band(8.0, 12.0).unwrap();
         assert_eq!(c.band(), Band::new(8.0, 12.0).unwrap());
         assert_eq!(c.quality().depth, 4);
+    }
+
+    /// A band measured from the display (or edited in the HUD) keeps the controller and its
+    /// fitted cost model: `predictive` plans the next frame for the new band at once.
+    #[test]
+    fn a_new_band_keeps_what_the_controller_learned() {
+        let mut c = control("predictive", "");
+        // Frames whose rays, and time, follow the quality: 1 ms + 1 µs a ray.
+        let frame = |q: Quality| {
+            let eye = 1e5 * f64::from(q.spp * q.scale * q.scale);
+            let rays: Vec<u64> = (0..=q.depth)
+                .map(|k| (eye / f64::from(k + 1)) as u64)
+                .collect();
+            FrameReport {
+                tp_ms: 1.0 + rays.iter().sum::<u64>() as f64 * 1e-6,
+                rays_per_depth: rays,
+                shadow_rays: 0,
+                rays_stopped: None,
+                pixels: 100_000,
+                quality: q,
+                speed_deg_s: 0.0,
+            }
+        };
+        for _ in 0..30 {
+            let r = frame(c.quality());
+            c.observe(&r).unwrap();
+        }
+        let settled = c.quality();
+        c.set_band(30.0, 40.0).unwrap();
+        let next = c.quality();
+        assert!(next.level() > settled.level(), "{settled} -> {next}");
+        assert!(c.band().contains(frame(next).tp_ms), "{next}");
     }
 
     #[test]
