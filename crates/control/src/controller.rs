@@ -40,12 +40,29 @@ pub trait Controller: Send + fmt::Debug {
     /// from elsewhere (`perceptual`: its model's frame times) keeps its own.
     fn set_band(&mut self, band: Band);
 
+    /// Takes costs measured around each frame on its display, for a controller whose bands
+    /// leave room for them (`perceptual`: its options `hand_over` and `warp`), keeping what
+    /// it has learned; `None` keeps the cost it has. The others have no use for them. On an
+    /// error (costs that leave a frame time no band) nothing changes.
+    fn set_display_costs(&mut self, _costs: DisplayCosts) -> Result<(), ConfigError> {
+        Ok(())
+    }
+
     /// The frame time the controller has chosen to deliver, ms, for a controller that
     /// chooses the frame rate itself (`perceptual`); `None` for one that holds the band it
     /// was given.
     fn target_frame_ms(&self) -> Option<f64> {
         None
     }
+}
+
+/// Costs around a frame on its display, as a live view measures them (`None`: not told).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DisplayCosts {
+    /// Handing a finished frame to the display, ms.
+    pub hand_over_ms: Option<f64>,
+    /// A warped refresh between two frames, ms.
+    pub warp_ms: Option<f64>,
 }
 
 /// What every controller needs: the band, the knobs' bounds and the starting quality.

@@ -88,7 +88,7 @@ pub mod simulate;
 pub mod step;
 
 pub use band::{Band, Position};
-pub use controller::{CONTROLLER_NAMES, Controller, Setup, from_name, parse_options};
+pub use controller::{CONTROLLER_NAMES, Controller, DisplayCosts, Setup, from_name, parse_options};
 pub use error::ConfigError;
 pub use fixed::Fixed;
 pub use hysteresis::{Hysteresis, HysteresisParams};

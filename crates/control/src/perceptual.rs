@@ -44,7 +44,7 @@
 //! `predictive` but `ladder` (the ladder is the model's).
 
 use crate::band::Band;
-use crate::controller::{Controller, Setup, parse_option, within};
+use crate::controller::{Controller, DisplayCosts, Setup, parse_option, within};
 use crate::error::ConfigError;
 use crate::motion_model::MotionModel;
 use crate::predictive::{Predictive, PredictiveParams};
@@ -162,6 +162,8 @@ pub struct Prospect {
 #[derive(Clone, Debug)]
 pub struct Perceptual {
     model: MotionModel,
+    /// What its bands are made from besides the model's frame times.
+    shaping: Shaping,
     hold_ms: f64,
     margin: f64,
     fall_ms: f64,
@@ -173,6 +175,48 @@ pub struct Perceptual {
     held_ms: f64,
     /// The speed decided on, deg/s: the measured speed, held as it falls (`fall_ms`).
     speed_deg_s: f64,
+}
+
+/// How [`Perceptual`] makes the band of each of its model's frame times: the model's display,
+/// the band's shape (`slack`, `width`) and the costs it leaves room for (`hand_over`, `warp`).
+#[derive(Clone, Copy, Debug)]
+struct Shaping {
+    display: DisplayConfig,
+    shape: BandShape,
+    hand_over_ms: f64,
+    warp_ms: f64,
+}
+
+impl Shaping {
+    /// The band of each of `model`'s frame times, or why one has none.
+    fn bands(&self, model: &MotionModel) -> Result<Vec<Band>, ConfigError> {
+        model
+            .frame_times_ms
+            .iter()
+            .map(|&t| {
+                let refreshes = (t / self.display.period_ms()).round().max(1.0) as u32;
+                let no_band = |why: String| ConfigError::BadOption {
+                    key: "hand_over".into(),
+                    value: self.hand_over_ms.to_string(),
+                    why: format!(
+                        "frame time {t} ms leaves no band after a {} ms hand-over, warped \
+                         refreshes of {} ms, a slack of {} and a width of {} of the frame \
+                         time: {why}",
+                        self.hand_over_ms, self.warp_ms, self.shape.margin, self.shape.width
+                    ),
+                };
+                let (tmin, tmax) = shaped_band(
+                    &self.display,
+                    refreshes,
+                    self.hand_over_ms,
+                    self.warp_ms,
+                    self.shape,
+                )
+                .map_err(|e| no_band(e.to_string()))?;
+                Band::new(tmin, tmax).map_err(|e| no_band(e.to_string()))
+            })
+            .collect()
+    }
 }
 
 impl Perceptual {
@@ -193,36 +237,16 @@ impl Perceptual {
                 why: format!("its display: {e}"),
             }
         })?;
-        let shape = BandShape {
-            margin: params.slack,
-            width: params.width,
+        let shaping = Shaping {
+            display,
+            shape: BandShape {
+                margin: params.slack,
+                width: params.width,
+            },
+            hand_over_ms: params.hand_over_ms,
+            warp_ms: params.warp_ms,
         };
-        let bands = model
-            .frame_times_ms
-            .iter()
-            .map(|&t| {
-                let refreshes = (t / display.period_ms()).round().max(1.0) as u32;
-                let no_band = |why: String| ConfigError::BadOption {
-                    key: "hand_over".into(),
-                    value: params.hand_over_ms.to_string(),
-                    why: format!(
-                        "frame time {t} ms leaves no band after a {} ms hand-over, warped \
-                         refreshes of {} ms, a slack of {} and a width of {} of the frame \
-                         time: {why}",
-                        params.hand_over_ms, params.warp_ms, params.slack, params.width
-                    ),
-                };
-                let (tmin, tmax) = shaped_band(
-                    &display,
-                    refreshes,
-                    params.hand_over_ms,
-                    params.warp_ms,
-                    shape,
-                )
-                .map_err(|e| no_band(e.to_string()))?;
-                Band::new(tmin, tmax).map_err(|e| no_band(e.to_string()))
-            })
-            .collect::<Result<Vec<Band>, ConfigError>>()?;
+        let bands = shaping.bands(&model)?;
         let target = bands.len() - 1;
         let inner_params = PredictiveParams {
             ladder: Some(model.ladder.clone()),
@@ -237,6 +261,7 @@ impl Perceptual {
         )?;
         Ok(Self {
             model,
+            shaping,
             hold_ms: params.hold_ms,
             margin: params.margin,
             fall_ms: params.fall_ms,
@@ -369,4 +394,28 @@ impl Controller for Perceptual {
 
     /// Its bands are its model's frame times': a band from outside changes none of them.
     fn set_band(&mut self, _band: Band) {}
+
+    /// Makes its bands again with the costs told, keeping its target frame time, its hold
+    /// and the inner controller's cost model (which moves to the target's new band).
+    fn set_display_costs(&mut self, costs: DisplayCosts) -> Result<(), ConfigError> {
+        let shaping = Shaping {
+            hand_over_ms: costs.hand_over_ms.unwrap_or(self.shaping.hand_over_ms),
+            warp_ms: costs.warp_ms.unwrap_or(self.shaping.warp_ms),
+            ..self.shaping
+        };
+        for (key, ms) in [
+            ("hand_over", shaping.hand_over_ms),
+            ("warp", shaping.warp_ms),
+        ] {
+            within(0.0, 1e3)(&ms).map_err(|why| ConfigError::BadOption {
+                key: key.into(),
+                value: ms.to_string(),
+                why,
+            })?;
+        }
+        self.bands = shaping.bands(&self.model)?;
+        self.shaping = shaping;
+        self.inner.retarget(self.bands[self.target]);
+        Ok(())
+    }
 }

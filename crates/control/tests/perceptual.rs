@@ -6,7 +6,8 @@ mod common;
 use common::{FAST, FRAME_TIMES, model, model_file};
 use steadyray_control::simulate::{Load, LoadProfile, RendererModel, SimRenderer};
 use steadyray_control::{
-    Band, Bounds, Controller, Perceptual, PerceptualParams, Quality, ReportError, Setup,
+    Band, Bounds, Controller, DisplayCosts, Perceptual, PerceptualParams, Quality, ReportError,
+    Setup,
 };
 
 fn controller() -> Perceptual {
@@ -237,4 +238,51 @@ fn warped_refreshes_take_their_time_from_the_longer_frames_bands() {
     p.set("warp", "6.5").unwrap();
     assert_eq!(p.warp_ms, 6.5);
     assert!(p.set("warp", "-1").is_err());
+}
+
+/// Costs measured while it runs (a live view's hand-over and warps) move its bands as the
+/// options would have, and keep its target frame time and what its cost model learned; costs
+/// that leave a frame time no band are refused and change nothing.
+#[test]
+fn measured_costs_move_the_bands_and_keep_what_it_learned() {
+    let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+    let built = |warp_ms: f64| {
+        let params = PerceptualParams {
+            model: Some(model()),
+            warp_ms,
+            ..PerceptualParams::default()
+        };
+        Perceptual::new(setup, params).unwrap()
+    };
+    let mut c = built(0.0);
+    // Still: it holds the longest frame time and settles its quality there.
+    run(&mut c, &[0.0; 60]);
+    let (target, settled) = (c.target_ms(), c.quality());
+    let costs = DisplayCosts {
+        hand_over_ms: None,
+        warp_ms: Some(6.0),
+    };
+    c.set_display_costs(costs).unwrap();
+    assert_eq!(c.target_ms(), target);
+    assert_eq!(c.band(), built(6.0).band());
+    // The band came 12 ms closer: the next frame is already planned cheaper.
+    assert!(
+        c.quality().level() < settled.level(),
+        "{settled} -> {}",
+        c.quality()
+    );
+    let band = c.band();
+    let too_long = DisplayCosts {
+        hand_over_ms: Some(16.0),
+        warp_ms: None,
+    };
+    let err = c.set_display_costs(too_long).unwrap_err().to_string();
+    assert!(err.contains("leaves no band"), "{err}");
+    assert_eq!(c.band(), band);
+    let nan = DisplayCosts {
+        hand_over_ms: Some(f64::NAN),
+        warp_ms: None,
+    };
+    assert!(c.set_display_costs(nan).is_err());
+    assert_eq!(c.band(), band);
 }

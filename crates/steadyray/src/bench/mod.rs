@@ -322,7 +322,8 @@ impl ControllerSpec {
         self.lacks("warp")
     }
 
-    fn lacks(&self, key: &str) -> bool {
+    /// A `perceptual` controller whose options do not give `key`.
+    pub(crate) fn lacks(&self, key: &str) -> bool {
         self.name == "perceptual"
             && !parse_options(&self.options).is_ok_and(|o| o.iter().any(|(k, _)| k == key))
     }

@@ -9,7 +9,7 @@ use super::frames::{LiveRenderer, Upload};
 use super::history::{FrameHistory, Sample, Spread};
 use super::hud::{self, HudChange, HudEdit, HudFacts};
 use super::input::{Command, InputState};
-use super::live_control::{DisplayCosts, LiveControl};
+use super::live_control::{LiveControl, MeasuredCosts};
 use super::path_clock::PathClock;
 use super::playback::Recording;
 use super::screen::{Drawn, Screen, UiFrame};
@@ -955,7 +955,7 @@ impl Running {
                     tmax_ms: b.tmax_ms,
                 });
                 if let Mode::Live(live) = &mut self.mode {
-                    let costs = DisplayCosts {
+                    let costs = MeasuredCosts {
                         hand_over_ms: b.hand_over_ms,
                         warp_ms: b.warp_ms,
                     };

@@ -6,7 +6,8 @@
 use crate::bench::ControllerSpec;
 use anyhow::{Result, bail};
 use steadyray_control::{
-    Band, Bounds, CONTROLLER_NAMES, Controller, FrameReport, Quality, ReportError, Setup, from_name,
+    Band, Bounds, CONTROLLER_NAMES, Controller, DisplayCosts, FrameReport, Quality, ReportError,
+    Setup, from_name,
 };
 
 /// The controller in use and what it was built from.
@@ -19,14 +20,14 @@ pub struct LiveControl {
     bounds: Bounds,
     controller: Box<dyn Controller>,
     /// What handing a frame to the window and warping a refresh cost, once measured.
-    display_costs: Option<DisplayCosts>,
+    display_costs: Option<MeasuredCosts>,
 }
 
 /// The window's measured costs around a frame (`--band refresh[:M]`, `--warp`): a
 /// `perceptual` controller is told them, as `bench` tells it, so that its bands leave room
 /// for them.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DisplayCosts {
+pub struct MeasuredCosts {
     pub hand_over_ms: f64,
     /// 0 where the window shows no warped refreshes.
     pub warp_ms: f64,
@@ -52,17 +53,18 @@ impl LiveControl {
     }
 
     /// Tells the controller (`perceptual`, the one that uses them) the window's measured
-    /// costs, unless its options give them; on an error nothing changes.
-    pub fn set_display_costs(&mut self, costs: DisplayCosts) -> Result<()> {
-        let before = self.display_costs.replace(costs);
-        if self.name() != "perceptual" {
-            return Ok(());
-        }
-        let rebuilt = self.rebuild(self.name(), self.band, self.bounds);
-        if rebuilt.is_err() {
-            self.display_costs = before;
-        }
-        rebuilt
+    /// costs, unless its options give them, keeping what it has learned
+    /// (`Controller::set_display_costs`); a controller built later is built with them. On an
+    /// error nothing changes.
+    pub fn set_display_costs(&mut self, costs: MeasuredCosts) -> Result<()> {
+        let given = self.given(self.name());
+        let told = DisplayCosts {
+            hand_over_ms: given.lacks("hand_over").then_some(costs.hand_over_ms),
+            warp_ms: given.lacks("warp").then_some(costs.warp_ms),
+        };
+        self.controller.set_display_costs(told)?;
+        self.display_costs = Some(costs);
+        Ok(())
     }
 
     /// The controller's name.
@@ -123,19 +125,24 @@ impl LiveControl {
     /// The options controller `name` is built with: those given for it on the command line,
     /// and for `perceptual` the measured display costs its options do not give.
     fn options_for(&self, name: &str) -> String {
-        let mut spec = ControllerSpec {
+        let mut spec = self.given(name);
+        if let Some(costs) = self.display_costs {
+            spec.tell_measured("hand_over", costs.hand_over_ms);
+            spec.tell_measured("warp", costs.warp_ms);
+        }
+        spec.options
+    }
+
+    /// Controller `name` with the options the command line gave for it.
+    fn given(&self, name: &str) -> ControllerSpec {
+        ControllerSpec {
             name: name.to_string(),
             options: if name == self.initial.0 {
                 self.initial.1.clone()
             } else {
                 String::new()
             },
-        };
-        if let Some(costs) = self.display_costs {
-            spec.tell_measured("hand_over", costs.hand_over_ms);
-            spec.tell_measured("warp", costs.warp_ms);
         }
-        spec.options
     }
 
     /// Replaces the controller; on an error nothing changes.
@@ -265,7 +272,7 @@ mod tests {
     #[test]
     fn perceptual_is_told_the_measured_costs_its_options_do_not_give() {
         let mut c = control("fixed", "");
-        let costs = DisplayCosts {
+        let costs = MeasuredCosts {
             hand_over_ms: 1.5,
             warp_ms: 6.25,
         };
