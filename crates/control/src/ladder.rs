@@ -93,6 +93,12 @@ impl Ladder {
         if self.points.is_empty() {
             return Err("the ladder has no points".into());
         }
+        if self.resolution.contains(&0) {
+            return Err(format!(
+                "the ladder was measured at an empty image ({}x{})",
+                self.resolution[0], self.resolution[1]
+            ));
+        }
         for (i, p) in self.points.iter().enumerate() {
             if !(p.spp >= 1.0 && p.spp.is_finite() && p.scale > 0.0 && p.scale <= 1.0) {
                 return Err(format!(
@@ -241,6 +247,9 @@ mod tests {
         assert!(bad.validate().unwrap_err().contains("front"));
         bad.points.clear();
         assert!(bad.validate().is_err());
+        let mut empty = ladder.clone();
+        empty.resolution = [0, 360];
+        assert!(empty.validate().unwrap_err().contains("0x360"));
         assert!(Ladder::from_json("{").is_err());
     }
 }

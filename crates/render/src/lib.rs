@@ -21,6 +21,6 @@ pub mod two_level;
 pub use image::Image;
 pub use renderer::{BackendInfo, Picture, Presented, RenderError, Renderer, check_time};
 pub use sample_stream::SampleStream;
-pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError};
+pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError, check_image_size};
 pub use stats::{FrameStats, RayCounts, TimingSource};
 pub use temporal::TemporalSettings;

@@ -8,6 +8,18 @@ pub const MAX_DEPTH: u32 = 64;
 /// The largest number of eye rays per pixel S a renderer accepts.
 pub const MAX_SPP: f32 = 4096.0;
 
+/// Checks an image size any renderer can render: 1 to 16384 pixels on a side (a command's
+/// full-scale size, checked before it renders anything at it or a scale of it).
+pub fn check_image_size(width: u32, height: u32) -> Result<(), SettingsError> {
+    if width == 0 || height == 0 {
+        return Err(SettingsError::EmptyImage { width, height });
+    }
+    if width > 16384 || height > 16384 {
+        return Err(SettingsError::ImageTooLarge { width, height });
+    }
+    Ok(())
+}
+
 /// What to render: image size, eye rays per pixel S (fractional: see
 /// [`crate::sampling::samples_for_pixel`]) and the largest reflection/refraction depth R.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,13 +61,7 @@ pub enum SettingsError {
 impl RenderSettings {
     /// Checks the settings, so renderers never see an empty image or a NaN sample count.
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let (width, height) = (self.width, self.height);
-        if width == 0 || height == 0 {
-            return Err(SettingsError::EmptyImage { width, height });
-        }
-        if width > 16384 || height > 16384 {
-            return Err(SettingsError::ImageTooLarge { width, height });
-        }
+        check_image_size(self.width, self.height)?;
         if !(self.spp >= 1.0 && self.spp <= MAX_SPP) {
             return Err(SettingsError::BadSpp(self.spp));
         }

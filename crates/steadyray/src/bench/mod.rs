@@ -44,6 +44,7 @@ use steadyray_control::{
 use steadyray_display::model::refresh_at_or_after;
 use steadyray_display::{RealClock, SyncMode, ViewingSetup, aligned_band};
 use steadyray_motion::{MotionProbe, MotionTracker};
+use steadyray_render::check_image_size;
 use steadyray_render::sample_stream::check_reference_spp;
 
 #[derive(Debug, Args)]
@@ -468,6 +469,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         let (w, h) = default_resolution(&info.backend, &info.device);
         let name = scene.name.clone();
         let (width, height) = (args.width.unwrap_or(w), args.height.unwrap_or(h));
+        check_image_size(width, height)?;
         let motion = MotionProbe::new(&scene, (width, height), ViewingSetup::standard_fhd())?;
         let source = RendererSource {
             renderer,

@@ -17,7 +17,9 @@ use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
 use steadyray_control::{MotionModel, Quality};
 use steadyray_quality::{Rgb8Image, flip};
 use steadyray_render::sample_stream::check_reference_spp;
-use steadyray_render::{RenderSettings, Renderer, SampleStream, TemporalSettings};
+use steadyray_render::{
+    RenderSettings, Renderer, SampleStream, TemporalSettings, check_image_size,
+};
 use steadyray_scene::Scene;
 
 #[derive(Debug, Args)]
@@ -236,6 +238,7 @@ pub fn calibrate(
     if plan.views == 0 || plan.frames == 0 {
         bail!("--views and --frames must be at least 1");
     }
+    check_image_size(plan.width, plan.height)?;
     check_reference_spp(plan.reference.spp)?;
     if let Some((frames, rate)) = plan.temporal
         && (frames == 0 || !(rate.is_finite() && rate > 0.0))
@@ -526,5 +529,13 @@ mod tests {
             &ProgressBar::hidden(),
         );
         assert!(bad.is_err());
+        // An empty image is refused before anything renders (a scaled side was clamped to
+        // one pixel, and a ladder of an empty image written).
+        let empty = Plan {
+            width: 0,
+            ..plan(None)
+        };
+        let err = calibrate(&mut renderer, &scene, &empty, &ProgressBar::hidden()).unwrap_err();
+        assert!(err.to_string().contains("0x18 is empty"), "{err}");
     }
 }

@@ -42,7 +42,7 @@ use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, View
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
 use steadyray_render::sample_stream::check_reference_spp;
-use steadyray_render::{Renderer, SampleStream};
+use steadyray_render::{Renderer, SampleStream, check_image_size};
 use steadyray_scene::{Camera, Scene};
 
 /// What to measure.
@@ -762,6 +762,7 @@ fn check_plan(plan: &MotionPlan) -> Result<()> {
     if plan.views == 0 {
         bail!("--views must be at least 1");
     }
+    check_image_size(plan.width, plan.height)?;
     if !(plan.stimulus_s.is_finite() && plan.stimulus_s > 0.0 && plan.stimulus_s <= 60.0) {
         bail!("--stimulus must be a number of seconds above 0 and at most 60");
     }
