@@ -18,7 +18,7 @@ use crate::box_test::Avx;
 use crate::box_test::{BoxRay, BoxTest, Portable};
 use crate::build::{BvhError, GpuOut, Layout, lay_out};
 use crate::gpu_node::{GPU_EMPTY, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
-use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, push_all_but_nearest};
+use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, finite_ray, push_all_but_nearest};
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -306,7 +306,7 @@ impl TopLevel {
         leaf: &mut F,
     ) -> f32 {
         let mut best = t_max;
-        if self.wide.is_empty() {
+        if self.wide.is_empty() || !finite_ray(origin, dir) {
             return best;
         }
         let br = BoxRay::new(origin, dir);
@@ -391,7 +391,7 @@ impl TopLevel {
         t_max: f32,
         leaf: &mut F,
     ) -> bool {
-        if self.wide.is_empty() {
+        if self.wide.is_empty() || !finite_ray(origin, dir) {
             return false;
         }
         let br = BoxRay::new(origin, dir);
@@ -630,6 +630,17 @@ mod tests {
         for b in &moved {
             let p = pad(*b);
             assert!(root.min.cmple(p.min).all() && root.max.cmpge(p.max).all());
+        }
+    }
+
+    /// A ray that is not finite meets no leaf (its box tests would enter every box).
+    #[test]
+    fn rays_that_are_not_finite_meet_nothing() {
+        let top = TopLevel::build(&boxes(3000, 5), TopLayout::Cpu).unwrap();
+        let nan = Vec3A::new(f32::NAN, 0.0, f32::NAN);
+        for (o, d) in [(Vec3A::ZERO, nan), (nan, Vec3A::X)] {
+            assert_eq!(top.closest(o, d, 35.0, |_, _| 0.0), 35.0);
+            assert!(!top.any_hit(o, d, 35.0, |_| true));
         }
     }
 

@@ -56,7 +56,14 @@ impl WideNode {
     }
 }
 
-/// Which compiled form of the traversal an x86-64 CPU runs.
+/// Whether a ray can be traversed: a NaN or infinite origin or direction meets nothing (its
+/// box tests, which leave an interval unchanged at a NaN, would enter every box, the empty
+/// lanes too, and overflow the stack).
+#[inline(always)]
+pub(crate) fn finite_ray(origin: Vec3A, dir: Vec3A) -> bool {
+    origin.is_finite() && dir.is_finite()
+}
+
 /// The children a ray entered, as (entry distance, child): pushes all but the nearest on
 /// the stack of pending (child, distance) pairs, the farthest deepest, and returns the
 /// nearest, to descend into. `hits` is not empty.
@@ -184,7 +191,7 @@ impl Wide {
         dir: Vec3A,
         t_max: f32,
     ) -> Option<(f32, u32)> {
-        if self.nodes.is_empty() {
+        if self.nodes.is_empty() || !finite_ray(origin, dir) {
             return None;
         }
         let wr = WatertightRay::new(origin, dir);
@@ -264,7 +271,7 @@ impl Wide {
     /// [`Wide::any_hit`] with box tests by `B`.
     #[inline(always)]
     pub(crate) fn any_hit_with<B: BoxTest>(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> bool {
-        if self.nodes.is_empty() {
+        if self.nodes.is_empty() || !finite_ray(origin, dir) {
             return false;
         }
         let wr = WatertightRay::new(origin, dir);

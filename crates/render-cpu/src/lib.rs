@@ -33,7 +33,8 @@ use steadyray_render::temporal::sample_base;
 use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, MAX_DEPTH, Picture, Presented, RenderError, RenderSettings,
-    Renderer, SampleStream, SettingsError, TemporalSettings, TimingSource, check_time,
+    Renderer, SampleStream, SettingsError, TemporalSettings, TimingSource, check_camera,
+    check_time,
 };
 use steadyray_scene::{Camera, Scene};
 use temporal::History;
@@ -146,6 +147,7 @@ impl CpuRenderer {
 
     /// The history's picture as `camera` sees it ([`Renderer::present_warped`]).
     fn warp(&mut self, camera: &Camera) -> Result<Picture, RenderError> {
+        check_camera(camera)?;
         let history = self.history.as_mut().ok_or_else(|| {
             RenderError::Unavailable(
                 "a warped refresh needs the temporal mode (its history and geometry)".into(),
@@ -202,6 +204,7 @@ impl Renderer for CpuRenderer {
     ) -> Result<FrameStats, RenderError> {
         settings.validate()?;
         check_time(time_s)?;
+        check_camera(camera)?;
         let world = self.world.as_mut().ok_or(RenderError::NoScene)?;
         let (width, height) = (settings.width, settings.height);
         if let Some(history) = &self.history {

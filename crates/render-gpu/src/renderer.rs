@@ -15,7 +15,7 @@ use steadyray_render::temporal::sample_base;
 use steadyray_render::two_level::SceneLayout;
 use steadyray_render::{
     BackendInfo, FrameStats, Image, Picture, Presented, RayCounts, RenderError, RenderSettings,
-    Renderer, SampleStream, TemporalSettings, TimingSource, check_time,
+    Renderer, SampleStream, TemporalSettings, TimingSource, check_camera, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 
@@ -309,6 +309,7 @@ impl Renderer for GpuRenderer {
     ) -> Result<FrameStats, RenderError> {
         settings.validate()?;
         check_time(time_s)?;
+        check_camera(camera)?;
         let scene = self.scene.as_mut().ok_or(RenderError::NoScene)?;
         self.ctx.errors.check()?;
         let wall_start = Instant::now();
@@ -528,6 +529,7 @@ impl Renderer for GpuRenderer {
     }
 
     fn present_warped(&mut self, camera: &Camera) -> Result<Presented, RenderError> {
+        check_camera(camera)?;
         let settings = self.temporal.settings().ok_or_else(|| {
             RenderError::Unavailable(
                 "a warped refresh needs the temporal mode (its history and geometry)".into(),

@@ -19,7 +19,9 @@ pub mod tonemap;
 pub mod two_level;
 
 pub use image::Image;
-pub use renderer::{BackendInfo, Picture, Presented, RenderError, Renderer, check_time};
+pub use renderer::{
+    BackendInfo, Picture, Presented, RenderError, Renderer, check_camera, check_time,
+};
 pub use sample_stream::SampleStream;
 pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError, check_image_size};
 pub use stats::{FrameStats, RayCounts, TimingSource};

@@ -21,6 +21,8 @@ pub enum RenderError {
     Settings(#[from] SettingsError),
     #[error("scene time {0} s is not a finite number")]
     BadTime(f64),
+    #[error("cannot render from this camera: {0}")]
+    BadCamera(String),
     #[error("no scene loaded: call load_scene first")]
     NoScene,
     #[error("no frame rendered yet: render before reading the image")]
@@ -49,6 +51,12 @@ pub enum Presented {
     Host(Picture),
     /// On the device, into the buffer a present pass there reads: nothing reached the host.
     Device,
+}
+
+/// Checks a camera given to [`Renderer::render`] or [`Renderer::present_warped`]
+/// ([`Camera::check`]): a camera that is not finite would send rays no renderer can trace.
+pub fn check_camera(camera: &Camera) -> Result<(), RenderError> {
+    camera.check().map_err(RenderError::BadCamera)
 }
 
 /// Checks a scene time given to [`Renderer::render`]: any finite number of seconds.

@@ -55,6 +55,28 @@ impl Camera {
         }
     }
 
+    /// Why no image can be rendered from this camera: a position or direction that is not
+    /// finite (a NaN yaw, say), no view direction, or a field of view outside (0°, 180°).
+    pub fn check(&self) -> Result<(), String> {
+        let finite = self.eye.is_finite() && self.forward.is_finite() && self.up.is_finite();
+        if !finite {
+            return Err(format!(
+                "its position and directions must be finite (eye {}, forward {}, up {})",
+                self.eye, self.forward, self.up
+            ));
+        }
+        if self.forward.length_squared() == 0.0 {
+            return Err("it has no view direction".into());
+        }
+        if !(self.vfov_deg > 0.0 && self.vfov_deg < 180.0) {
+            return Err(format!(
+                "its field of view {}° is not in (0°, 180°)",
+                self.vfov_deg
+            ));
+        }
+        Ok(())
+    }
+
     /// The ray frame for an image of `width` × `height` pixels.
     pub fn frame(&self, width: u32, height: u32) -> CameraFrame {
         let forward = self.forward.normalize();
@@ -85,5 +107,42 @@ impl CameraFrame {
         let sx = (2.0 * (px as f32 + u) / width as f32 - 1.0) * self.half_width;
         let sy = (1.0 - 2.0 * (py as f32 + v) / height as f32) * self.half_height;
         (self.forward + sx * self.right + sy * self.true_up).normalize()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_camera_renders_only_when_finite_with_a_direction_and_a_field_of_view() {
+        let good = Camera::yaw_pitch(Vec3::new(0.0, 1.5, 0.0), 0.3, 0.1, 60.0);
+        assert_eq!(good.check(), Ok(()));
+        let bad = [
+            Camera::yaw_pitch(good.eye, f32::NAN, 0.0, 60.0),
+            Camera {
+                eye: Vec3::new(f32::INFINITY, 0.0, 0.0),
+                ..good
+            },
+            Camera {
+                forward: Vec3::ZERO,
+                ..good
+            },
+            Camera {
+                vfov_deg: 0.0,
+                ..good
+            },
+            Camera {
+                vfov_deg: 180.0,
+                ..good
+            },
+            Camera {
+                vfov_deg: f32::NAN,
+                ..good
+            },
+        ];
+        for camera in bad {
+            assert!(camera.check().is_err(), "{camera:?}");
+        }
     }
 }

@@ -117,6 +117,21 @@ fn bad_times_are_clear_errors() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A camera that is not finite is refused by the renderer (its rays overflowed the BVH's
+/// traversal stack: a panic). Both renderers call the same check.
+#[test]
+fn a_camera_that_is_not_finite_is_a_clear_error() {
+    let dir = scratch("bad-camera");
+    let out_png = dir.join("x.png");
+    let out = render(&["--yaw", "nan", "-o", out_png.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.status.success());
+    assert!(err.contains("cannot render from this camera"), "{err}");
+    assert!(!out_png.exists(), "no image for a refused render");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_reference_of_one_sample_a_pixel_is_a_clear_error() {
     let dir = scratch("reference");
