@@ -4,7 +4,7 @@
 
 use super::camera::{FlyCamera, Sweep};
 use super::capture::Screenshot;
-use super::display_band::{AlignedBand, DisplayBand, FALLBACK_REFRESH_HZ};
+use super::display_band::{DisplayBand, FALLBACK_REFRESH_HZ};
 use super::frames::{LiveRenderer, Upload};
 use super::history::{FrameHistory, Sample, Spread};
 use super::hud::{self, HudChange, HudEdit, HudFacts};
@@ -143,6 +143,8 @@ struct Live {
     /// `--band refresh:M`), and how many of the last frame's are still to show.
     warps: u32,
     warps_due: u32,
+    /// Whether the refreshes between frames show warps (V; off, they repeat the frame).
+    warps_on: bool,
     /// Whether the history holds a frame a refresh could show warped.
     warpable: bool,
     /// The monitor's refresh interval, ms (60 Hz where it does not say).
@@ -167,8 +169,9 @@ impl Live {
     }
 
     /// Times a warp of the last frame to `camera` that no refresh shows, for a band that
-    /// waits for the warps' cost while the controller shows none (`perceptual` holding one
-    /// refresh a frame): None when there is no frame to warp, or the window shows warps.
+    /// waits for the warps' cost while no warps are shown (`perceptual` holding one refresh a
+    /// frame, or V turned them off): None when there is no frame to warp, or the window
+    /// shows warps.
     fn time_unshown_warp(
         &mut self,
         camera: &Camera,
@@ -187,7 +190,7 @@ impl Live {
     /// those between frames of the controller's chosen frame time (`perceptual`), else of
     /// the band's.
     fn warps_after_frame(&self) -> u32 {
-        if self.warps == 0 || self.history.is_none() {
+        if self.warps == 0 || !self.warps_on || self.history.is_none() {
             return 0;
         }
         match self.control.target_frame_ms() {
@@ -378,8 +381,10 @@ struct Running {
     shot_requested: bool,
     /// The `--frames` run is complete.
     finished: bool,
-    /// `--band refresh[:M]` until its hand-over is measured.
+    /// `--band refresh[:M]`: the display's band and its measured costs.
     display_band: Option<DisplayBand>,
+    /// Whether the band set from them was for frames followed by warps (None: none set yet).
+    band_for_warps: Option<bool>,
     /// The last live frame's hand-over to the window, ms.
     hand_over_ms: Option<f64>,
 }
@@ -560,6 +565,7 @@ impl Running {
                     history: None,
                     warps: plan.warps,
                     warps_due: 0,
+                    warps_on: true,
                     warpable: false,
                     refresh_ms: 1000.0 / refresh_hz.unwrap_or(FALLBACK_REFRESH_HZ),
                     speed_deg_s: None,
@@ -638,6 +644,10 @@ impl Running {
                     Mode::Live(live) => live.temporal,
                     Mode::Playback(_) => false,
                 },
+                warps: match &mode {
+                    Mode::Live(live) => (live.warps > 0).then_some(live.warps_on),
+                    Mode::Playback(_) => None,
+                },
                 paused: false,
             },
             window,
@@ -668,6 +678,7 @@ impl Running {
             shot_requested: false,
             finished: false,
             display_band,
+            band_for_warps: None,
             hand_over_ms: None,
         })
     }
@@ -713,6 +724,11 @@ impl Running {
             },
             Command::TogglePause => self.apply(HudChange::Pause(!self.paused)),
             Command::ToggleTemporal => self.apply(HudChange::Temporal(!self.hud_edit.temporal)),
+            Command::ToggleWarps => {
+                if let Some(on) = self.hud_edit.warps {
+                    self.apply(HudChange::Warps(!on));
+                }
+            }
             Command::Screenshot => self.shot_requested = true,
             Command::Quit => return Flow::Exit,
         }
@@ -721,6 +737,7 @@ impl Running {
 
     /// Applies one HUD edit; a refused one is shown in the HUD and undone there.
     fn apply(&mut self, change: HudChange) {
+        let warps_changed = matches!(change, HudChange::Warps(_));
         let result = match (&mut self.mode, change) {
             (_, HudChange::Pause(paused)) => {
                 self.paused = paused;
@@ -732,6 +749,13 @@ impl Running {
             }
             (Mode::Live(live), HudChange::Temporal(on)) => {
                 live.temporal = on;
+                Ok(())
+            }
+            (Mode::Live(live), HudChange::Warps(on)) => {
+                live.warps_on = on;
+                if !on {
+                    live.warps_due = 0;
+                }
                 Ok(())
             }
             (Mode::Live(live), HudChange::Controller(name)) => live.control.set_controller(name),
@@ -746,6 +770,9 @@ impl Running {
         };
         self.message = result.err().map(|e| format!("{e:#}"));
         self.sync_hud();
+        if warps_changed {
+            self.update_band();
+        }
     }
 
     /// Makes the HUD's controls show what is in effect.
@@ -758,6 +785,7 @@ impl Running {
                 self.hud_edit.bounds = live.control.bounds();
                 self.hud_edit.sweep = live.sweep.on;
                 self.hud_edit.temporal = live.temporal;
+                self.hud_edit.warps = (live.warps > 0).then_some(live.warps_on);
             }
             Mode::Playback(_) => {
                 if let Ok(band) = Band::new(self.hud_edit.tmin_ms, self.hud_edit.tmax_ms) {
@@ -928,28 +956,44 @@ impl Running {
     }
 
     /// Takes a frame's hand-over or a warp's cost towards `--band refresh[:M]` (`observe`
-    /// gives it to the pending band), and once they are measured sets the band and tells the
-    /// controller the costs (`perceptual` builds its own bands from them).
-    fn observe_band(
-        &mut self,
-        observe: impl FnOnce(&mut DisplayBand) -> Option<Result<AlignedBand>>,
-    ) {
-        let Some(pending) = &mut self.display_band else {
+    /// gives it to the display's band) and sets the band once it is measured.
+    fn observe_band(&mut self, observe: impl FnOnce(&mut DisplayBand)) {
+        if let Some(measuring) = &mut self.display_band {
+            observe(measuring);
+            self.update_band();
+        }
+    }
+
+    /// Whether the refreshes between frames show warps (`--warp`, and V has not turned them
+    /// off).
+    fn warps_shown(&self) -> bool {
+        matches!(&self.mode, Mode::Live(live) if live.warps > 0 && live.warps_on)
+    }
+
+    /// Sets `--band refresh[:M]`'s band, once measured, for the warps as they are shown
+    /// (again when V turns them off or on), and tells the controller the costs (`perceptual`
+    /// builds its own bands from them).
+    fn update_band(&mut self) {
+        let warps = self.warps_shown();
+        let Some(measuring) = &self.display_band else {
             return;
         };
-        match observe(pending) {
+        if self.band_for_warps == Some(warps) {
+            return;
+        }
+        match measuring.band(warps) {
             None => {}
             Some(Ok(b)) => {
-                let warps = if b.warp_ms > 0.0 {
+                let costs = if b.warp_ms > 0.0 {
                     format!(", warp {:.2} ms (median)", b.warp_ms)
                 } else {
                     String::new()
                 };
                 eprintln!(
-                    "steadyray view: --band refresh at {:.2} Hz: hand-over {:.2} ms (median){warps}, band [{:.2}, {:.2}] ms",
+                    "steadyray view: --band refresh at {:.2} Hz: hand-over {:.2} ms (median){costs}, band [{:.2}, {:.2}] ms",
                     b.refresh_hz, b.hand_over_ms, b.tmin_ms, b.tmax_ms
                 );
-                self.display_band = None;
+                self.band_for_warps = Some(warps);
                 self.apply(HudChange::Band {
                     tmin_ms: b.tmin_ms,
                     tmax_ms: b.tmax_ms,

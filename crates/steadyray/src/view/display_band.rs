@@ -4,7 +4,7 @@
 //! upload of the CPU backend, the GPU's hand-over of its image), measured over the first
 //! frames, after as many unmeasured ones. With `--warp` the M − 1 warped refreshes between
 //! frames run on the same machine, and their cost, measured the same way, comes off the band
-//! too.
+//! too while the window shows them (V turns them off and on: the band follows).
 
 use anyhow::Result;
 use steadyray_display::{DisplayConfig, SyncMode, aligned_band, stats::quantile};
@@ -15,7 +15,7 @@ pub const HAND_OVER_FRAMES: usize = 10;
 /// The refresh rate assumed when the monitor does not report one, Hz.
 pub const FALLBACK_REFRESH_HZ: f64 = 60.0;
 
-/// A display-aligned band waiting for its hand-over (and warps) to be measured.
+/// A display-aligned band: the costs measured so far, and the band once they are.
 #[derive(Debug)]
 pub struct DisplayBand {
     multiple: u32,
@@ -81,12 +81,9 @@ impl DisplayBand {
         })
     }
 
-    /// Takes one frame's hand-over; once enough (and, with warps, enough warps) are
-    /// measured, the band (median costs), or why the display leaves no band (costs longer
-    /// than the frame interval).
-    pub fn observe(&mut self, hand_over_ms: f64) -> Option<Result<AlignedBand>> {
+    /// Takes one frame's hand-over.
+    pub fn observe(&mut self, hand_over_ms: f64) {
         self.hand_over.observe(hand_over_ms);
-        self.band()
     }
 
     /// Whether the band still waits for warped refreshes to be measured: a window whose
@@ -96,18 +93,20 @@ impl DisplayBand {
     }
 
     /// Takes one warped refresh's cost, as [`DisplayBand::observe`] a hand-over.
-    pub fn observe_warp(&mut self, warp_ms: f64) -> Option<Result<AlignedBand>> {
+    pub fn observe_warp(&mut self, warp_ms: f64) {
         if let Some(warp) = &mut self.warp {
             warp.observe(warp_ms);
         }
-        self.band()
     }
 
-    fn band(&self) -> Option<Result<AlignedBand>> {
+    /// The band (from the median costs) for frames followed by warped refreshes (`warps`,
+    /// where the window was given them) or not, once what it needs is measured; or why the
+    /// display leaves no band (costs longer than the frame interval).
+    pub fn band(&self, warps: bool) -> Option<Result<AlignedBand>> {
         let hand_over_ms = self.hand_over.median()?;
         let warp_ms = match &self.warp {
-            Some(warp) => warp.median()?,
-            None => 0.0,
+            Some(warp) if warps => warp.median()?,
+            _ => 0.0,
         };
         Some(
             aligned_band(&self.display, self.multiple, hand_over_ms, warp_ms)
@@ -128,7 +127,10 @@ mod tests {
     use super::*;
 
     fn measured(band: &mut DisplayBand, ms: f64) -> Option<Result<AlignedBand>> {
-        (0..2 * HAND_OVER_FRAMES).find_map(|_| band.observe(ms))
+        (0..2 * HAND_OVER_FRAMES).find_map(|_| {
+            band.observe(ms);
+            band.band(true)
+        })
     }
 
     #[test]
@@ -136,9 +138,11 @@ mod tests {
         let mut band = DisplayBand::new(1, Some(60.0), false).unwrap();
         assert!(!band.wants_warp());
         for _ in 0..2 * HAND_OVER_FRAMES - 1 {
-            assert!(band.observe(1.0).is_none());
+            band.observe(1.0);
+            assert!(band.band(true).is_none());
         }
-        let b = band.observe(1.0).unwrap().unwrap();
+        band.observe(1.0);
+        let b = band.band(true).unwrap().unwrap();
         // 16.67 ms · 0.95 − 1 ms and 0.2 · 16.67 ms below it.
         assert!((b.tmax_ms - (1000.0 / 60.0 * 0.95 - 1.0)).abs() < 1e-9);
         assert!((b.tmax_ms - b.tmin_ms - 1000.0 / 60.0 * 0.2).abs() < 1e-9);
@@ -163,15 +167,23 @@ mod tests {
     #[test]
     fn warped_refreshes_wait_for_their_own_measure_and_take_their_time_from_the_band() {
         let mut band = DisplayBand::new(2, Some(60.0), true).unwrap();
-        // Every hand-over measured but no warp yet: no band.
+        // Every hand-over measured but no warp yet: no band with warps, one without.
         assert!(measured(&mut band, 2.0).is_none());
         assert!(band.wants_warp());
+        let plain = band.band(false).unwrap().unwrap();
+        assert_eq!((plain.hand_over_ms, plain.warp_ms), (2.0, 0.0));
         let b = (0..2 * HAND_OVER_FRAMES)
-            .find_map(|_| band.observe_warp(5.0))
+            .find_map(|_| {
+                band.observe_warp(5.0);
+                band.band(true)
+            })
             .unwrap()
             .unwrap();
         assert_eq!((b.hand_over_ms, b.warp_ms), (2.0, 5.0));
         assert!(!band.wants_warp());
+        // Warps turned off: the band without them, from the same measurements.
+        assert_eq!(band.band(false).unwrap().unwrap(), plain);
+        assert!((plain.tmax_ms - b.tmax_ms - 5.0).abs() < 1e-9);
         // 2 refreshes · 0.95 − the hand-over − one warp.
         assert!((b.tmax_ms - (2000.0 / 60.0 * 0.95 - 2.0 - 5.0)).abs() < 1e-9);
         assert!((b.tmax_ms - b.tmin_ms - 2000.0 / 60.0 * 0.2).abs() < 1e-9);

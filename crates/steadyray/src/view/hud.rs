@@ -23,6 +23,8 @@ pub struct HudEdit {
     pub paused: bool,
     /// The temporal mode (`docs/temporal.md`).
     pub temporal: bool,
+    /// Whether the refreshes between frames show warps; None without `--warp`.
+    pub warps: Option<bool>,
 }
 
 /// One edit the view applies at the next frame.
@@ -34,6 +36,7 @@ pub enum HudChange {
     Sweep(bool),
     Pause(bool),
     Temporal(bool),
+    Warps(bool),
 }
 
 impl HudEdit {
@@ -60,6 +63,9 @@ impl HudEdit {
         }
         if self.temporal != before.temporal {
             changes.push(HudChange::Temporal(self.temporal));
+        }
+        if let (Some(on), true) = (self.warps, self.warps != before.warps) {
+            changes.push(HudChange::Warps(on));
         }
         changes
     }
@@ -106,7 +112,8 @@ pub fn show(ctx: &egui::Context, edit: &mut HudEdit, facts: &HudFacts<'_>) -> Op
             ui.colored_label(Color32::from_rgb(255, 120, 100), message);
         }
         ui.small(
-            "F1 HUD · Space sweep · P pause · T temporal · F12 shot\ndrag: look · WASD/QE: move",
+            "F1 HUD · Space sweep · P pause · T temporal · V warps · F12 shot\ndrag: look · \
+             WASD/QE: move",
         );
     })?;
     Some(response.response.rect)
@@ -237,7 +244,7 @@ fn figures(ui: &mut egui::Ui, facts: &HudFacts<'_>) {
     });
 }
 
-/// The controller, band, bounds, sweep, pause and temporal controls.
+/// The controller, band, bounds, sweep, pause, temporal and warps controls.
 fn controls(ui: &mut egui::Ui, edit: &mut HudEdit, playback: bool) {
     if !playback {
         egui::ComboBox::from_label("controller")
@@ -285,6 +292,9 @@ fn controls(ui: &mut egui::Ui, edit: &mut HudEdit, playback: bool) {
         if !playback {
             ui.checkbox(&mut edit.temporal, "temporal");
         }
+        if let Some(warps) = &mut edit.warps {
+            ui.checkbox(warps, "warps");
+        }
     });
 }
 
@@ -302,6 +312,7 @@ mod tests {
             sweep: false,
             paused: false,
             temporal: false,
+            warps: Some(true),
         }
     }
 
@@ -316,6 +327,7 @@ mod tests {
         after.sweep = true;
         after.paused = true;
         after.temporal = true;
+        after.warps = Some(false);
         let bounds = Bounds {
             depth_max: 4,
             ..Bounds::default()
@@ -332,8 +344,15 @@ mod tests {
                 HudChange::Sweep(true),
                 HudChange::Pause(true),
                 HudChange::Temporal(true),
+                HudChange::Warps(false),
             ]
         );
+        // A window without `--warp` has no warps to turn on.
+        let plain = HudEdit {
+            warps: None,
+            ..before.clone()
+        };
+        assert!(plain.changes_since(&before).is_empty());
     }
 
     /// The HUD lays out without a window: egui runs headless.

@@ -49,6 +49,8 @@ pub enum Command {
     TogglePause,
     /// T: turn the temporal mode on or off.
     ToggleTemporal,
+    /// V: show the refreshes between frames warped or repeat the frame (`--warp`).
+    ToggleWarps,
     /// F12: save a screenshot PNG.
     Screenshot,
     /// Escape: close the view.
@@ -76,6 +78,7 @@ fn binding(code: KeyCode) -> Option<Binding> {
         KeyCode::Space => C(Command::ToggleSweep),
         KeyCode::KeyP => C(Command::TogglePause),
         KeyCode::KeyT => C(Command::ToggleTemporal),
+        KeyCode::KeyV => C(Command::ToggleWarps),
         KeyCode::F12 => C(Command::Screenshot),
         KeyCode::Escape => C(Command::Quit),
         _ => return None,
