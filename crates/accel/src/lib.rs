@@ -103,13 +103,16 @@ impl Bvh {
 
     /// The nearest hit of the ray `origin + t·dir` on t in (T_MIN, t_max): its t and the
     /// input index of the triangle. Among hits at the same t the lowest index wins, and a
-    /// hit exactly at t_max is not taken, as in a brute-force loop over the input.
+    /// hit exactly at t_max is not taken, as in a brute-force loop over the input. The ray
+    /// must be finite (a NaN would enter every box): a scene's rays reach here through
+    /// [`TopLevel`], which lets a ray that is not finite meet nothing.
     #[inline]
     pub fn closest(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> Option<(f32, u32)> {
         self.wide.closest(origin, dir, t_max)
     }
 
-    /// Whether the ray `origin + t·dir` hits any triangle on t in (T_MIN, t_max).
+    /// Whether the ray `origin + t·dir` hits any triangle on t in (T_MIN, t_max). The ray
+    /// must be finite, as for [`Bvh::closest`].
     #[inline]
     pub fn any_hit(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> bool {
         self.wide.any_hit(origin, dir, t_max)
