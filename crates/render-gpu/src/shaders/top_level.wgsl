@@ -66,10 +66,18 @@ fn hit_leaf(leaf: TopLeaf, ray: Ray, best_t: f32) -> Hit {
     return Hit(select(NO_HIT, tri.t, tri.t < bound), tri.index, i);
 }
 
+// Whether a ray can be traversed: one whose origin or direction is not finite (a reflection
+// off a NaN normal) meets nothing, as on the CPU (steadyray_accel's top level): its box tests
+// could enter every box and run the stack past its end.
+fn finite_ray(ray: Ray) -> bool {
+    let largest = vec3<f32>(3.40282347e38);
+    return all(abs(ray.origin) <= largest) && all(abs(ray.dir) <= largest);
+}
+
 fn closest_hit(ray: Ray) -> Hit {
     var best = Hit(NO_HIT, 0u, NO_INSTANCE);
     var best_key = 0xffffffffu;
-    if frame.leaf_count != 0u {
+    if frame.leaf_count != 0u && finite_ray(ray) {
         let br = make_box_ray(ray);
         var sp = 0u;
         var cur = 0u;
@@ -148,7 +156,7 @@ fn occluded(ray: Ray, t_max: f32) -> bool {
             return true;
         }
     }
-    if frame.leaf_count == 0u {
+    if frame.leaf_count == 0u || !finite_ray(ray) {
         return false;
     }
     let br = make_box_ray(ray);
