@@ -275,7 +275,18 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let fixed = &summary["controllers"][0];
-    assert_eq!(fixed["displayed_samples"], 3, "refreshes 0, 3 and 4");
+    // Refresh 0 shows the last warm-up frame (a refresh before the path's start): the
+    // scores begin with the run's first frame on screen.
+    assert_eq!(fixed["displayed_samples"], 2, "refreshes 3 and 4");
+    let displayed = std::fs::read_to_string(out.join("displayed.csv")).unwrap();
+    let rows: Vec<&str> = displayed.lines().skip(1).collect();
+    assert_eq!(rows.len(), 2, "{displayed}");
+    assert!(
+        rows.iter()
+            .all(|row| row.split(',').nth(3).is_some_and(|frame| !frame.is_empty())),
+        "{displayed}"
+    );
+    assert!(timings.contains("0,0.0000,warmup,-0.016667,"), "{timings}");
     let flip = fixed["displayed_flip_mean"].as_f64().unwrap();
     assert!(flip > 0.0 && flip < 0.5, "{flip}");
     assert!(fixed["frame_flip_mean"].as_f64().unwrap() <= flip + 1e-9);

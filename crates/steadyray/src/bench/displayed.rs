@@ -197,8 +197,20 @@ pub fn screen_picture(
     }
 }
 
-/// What one run's screen looked like against the references.
+/// One sampled refresh against the references (a row of `displayed.csv`).
 #[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScoredSample {
+    pub sample: ScreenSample,
+    /// FLIP of the screen against the world at the refresh.
+    pub flip: f64,
+    /// FLIP of the screen against the world at the time its frame shows.
+    pub frame_flip: f64,
+    /// FLIP of the world at the frame's time against the world at the refresh.
+    pub age_flip: f64,
+}
+
+/// What one run's screen looked like against the references.
+#[derive(Clone, Debug, PartialEq)]
 pub struct DisplayedQuality {
     /// Sampled refreshes measured.
     pub samples: usize,
@@ -214,6 +226,8 @@ pub struct DisplayedQuality {
     pub age_flip_mean: f64,
     /// Mean age of the world on screen, ms (refresh time − the frame's world time).
     pub age_ms_mean: f64,
+    /// Every sampled refresh's scores, in time order: the distribution behind the means.
+    pub scored: Vec<ScoredSample>,
 }
 
 /// Measures a run's screen at `samples` against `references` (which must hold every
@@ -257,6 +271,16 @@ pub fn measure(
         frame_flip_mean: mean(&own).unwrap_or(0.0),
         age_flip_mean: mean(&age_flip).unwrap_or(0.0),
         age_ms_mean: mean(&age).unwrap_or(0.0),
+        scored: samples
+            .iter()
+            .zip(&rows)
+            .map(|(&sample, row)| ScoredSample {
+                sample,
+                flip: row[0],
+                frame_flip: row[1],
+                age_flip: row[2],
+            })
+            .collect(),
     }))
 }
 
@@ -295,12 +319,14 @@ mod tests {
             .enumerate()
             .map(|(j, &t)| (Some(j), world(t, speed)))
             .collect();
-        pictures.insert(None, world(0.0, speed));
+        // The lead-in frame (the last warm-up frame) shows the world as late as the others.
+        let lead_in_world_s = -lag * P_S;
+        pictures.insert(None, world(lead_in_world_s, speed));
         let mut references = TimedReferences::new(Quality::new(16.0, 16, 1.0));
         for r in timeline.refreshes() {
             references.insert(r.time_ms / 1000.0, world(r.time_ms / 1000.0, speed));
         }
-        for &t in &world_s {
+        for &t in world_s.iter().chain([&lead_in_world_s]) {
             references.insert(t, world(t, speed));
         }
         let run = DisplayRun {
@@ -309,6 +335,7 @@ mod tests {
             pictures,
             warps: Warps::default(),
             world_s,
+            lead_in_world_s,
             quality: None,
             busy_pct: None,
         };
@@ -345,8 +372,15 @@ mod tests {
         assert_eq!(fast.frame_flip_mean, 0.0);
         assert_eq!(fast.age_flip_mean, fast.flip_mean);
         assert_eq!(slow.age_flip_mean, slow.flip_mean);
-        // Refreshes 1 to 11 show a frame one refresh old; refresh 0 the warm-up frame, on time.
-        assert!((fast.age_ms_mean - 1000.0 * P_S * 11.0 / 12.0).abs() < 1e-6);
+        // Every refresh shows a frame one refresh old, refresh 0 the last warm-up frame (a
+        // refresh before the path's start): its age too is age, not a fault of its picture.
+        assert!((fast.age_ms_mean - 1000.0 * P_S).abs() < 1e-6);
+        let lead_in = fast.scored[0];
+        assert_eq!(lead_in.sample.frame, None);
+        assert!((lead_in.sample.world_s + P_S).abs() < 1e-12);
+        assert_eq!(lead_in.frame_flip, 0.0);
+        assert!(lead_in.age_flip > 0.0 && lead_in.flip == lead_in.age_flip);
+        assert_eq!(fast.scored.len(), fast.samples);
     }
 
     #[test]
@@ -362,17 +396,14 @@ mod tests {
     fn a_warped_refresh_is_its_own_picture_at_its_own_time() {
         let speed = 240.0;
         let (mut run, mut references) = screen(1.0, speed);
-        run.warps.shown.extend(1..12);
+        // Every refresh warped, the lead-in frame's at refresh 0 too (as `--warp` does).
+        run.warps.shown.extend(0..12);
         let samples = screen_samples(&run, 1000.0 * P_S, |_| true);
-        for s in &samples[1..] {
+        for s in &samples {
             let truth = references.get(s.time_s).unwrap().clone();
             run.warps.pictures.insert(s.index, truth);
         }
-        assert!(
-            samples[1..]
-                .iter()
-                .all(|s| s.warped && s.world_s == s.time_s)
-        );
+        assert!(samples.iter().all(|s| s.warped && s.world_s == s.time_s));
         let q = measure(&run, &samples, &mut references, (64, 32), 12.6)
             .unwrap()
             .unwrap();

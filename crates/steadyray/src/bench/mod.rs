@@ -10,7 +10,8 @@
 //! `--clock real` runs each controller for a span of display time on the display model
 //! instead ([`real_clock`], `spec/display.md`): the table, `summary.json` and `table.md` then
 //! say what the viewer saw (frames shown per second, repeats, pacing, latency); `--quality`
-//! measures the screen against the world at sampled refreshes ([`displayed`]) and `--video
+//! measures the screen against the world at sampled refreshes ([`displayed`]; each one's scores
+//! in `displayed.csv`) and `--video
 //! DIR` writes the screen and the reference at every refresh ([`video`]).
 
 pub(crate) mod displayed;
@@ -868,7 +869,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             let ppd = ViewingSetup::standard_fhd().pixels_per_degree(width) as f32;
             for run in &mut runs {
                 if let Some(shown) = run.display.as_mut() {
-                    let samples = screen_samples(shown, period, |i| measured.wants(i));
+                    // The scores begin with the run's first frame on screen: before it the
+                    // screen shows the bench's last warm-up frame, which a run with --warp
+                    // warps and one without holds, and which one sample would weigh as much
+                    // as a whole `--every` span of the run.
+                    let samples: Vec<_> = screen_samples(shown, period, |i| measured.wants(i))
+                        .into_iter()
+                        .filter(|s| s.frame.is_some())
+                        .collect();
                     shown.quality =
                         displayed::measure(shown, &samples, &mut references, (width, height), ppd)?;
                     shown.pictures.clear();
@@ -907,6 +915,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }),
     };
     record::write_frames_csv(&runs, &args.out.join("frames.csv"))?;
+    let displayed_csv = real.is_some() && args.quality;
+    if displayed_csv {
+        record::write_displayed_csv(&runs, &args.out.join("displayed.csv"))?;
+    }
     let summary = report::write_summary(&context, &runs, &args.out.join("summary.json"))?;
     if real.is_some() {
         let controllers = summary["controllers"]
@@ -933,7 +945,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         &args.out.join("frametime.svg"),
     )?;
     eprintln!(
-        "bench: wrote frames.csv, summary.json{}, frametime.png and frametime.svg to {}",
+        "bench: wrote frames.csv{}, summary.json{}, frametime.png and frametime.svg to {}",
+        if displayed_csv { ", displayed.csv" } else { "" },
         if real.is_some() { ", table.md" } else { "" },
         args.out.display()
     );

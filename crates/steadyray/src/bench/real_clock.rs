@@ -99,8 +99,11 @@ pub struct DisplayRun {
     /// The refreshes that showed the frame on screen warped to their own time (`--warp`),
     /// with the pictures of those at kept samples.
     pub warps: Warps,
-    /// World time of each frame, s (the warm-up frame's is 0).
+    /// World time of each frame, s.
     pub world_s: Vec<f64>,
+    /// World time of the frame on screen before the first (`None`), s: the last warm-up
+    /// frame's, a refresh before the path's start in the bench.
+    pub lead_in_world_s: f64,
     /// The screen against the references (`bench --quality`), measured after the runs.
     pub quality: Option<DisplayedQuality>,
     /// The frames' share (rendering and hand-over) of the run's wall time, %: the rest is
@@ -112,7 +115,7 @@ pub struct DisplayRun {
 impl DisplayRun {
     /// The world time a frame on screen shows, s.
     pub fn world_of(&self, frame: Option<usize>) -> f64 {
-        frame.map_or(0.0, |j| self.world_s[j])
+        frame.map_or(self.lead_in_world_s, |j| self.world_s[j])
     }
 }
 
@@ -290,9 +293,10 @@ pub fn run_controller_real(
     progress.set_message(name.to_string());
     let mut clock = RealClock::new(sweep.display, sweep.duration_s)?;
     let (period, end) = (sweep.display.period_ms(), clock.duration_ms());
-    let mut warm_picture = None;
+    let (mut warm_picture, mut lead_in_world_s) = (None, 0.0);
     for k in (1..=sweep.warmup).rev() {
         let t_s = -f64::from(k) * period / 1000.0;
+        lead_in_world_s = t_s;
         let m = source.frame(PathPoint::Time { index: 0, t_s }, controller.quality())?;
         let handed = source.hand_over()?;
         // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
@@ -427,6 +431,7 @@ pub fn run_controller_real(
             pictures,
             warps,
             world_s,
+            lead_in_world_s,
             quality: None,
             busy_pct,
         }),

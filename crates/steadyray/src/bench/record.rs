@@ -154,3 +154,43 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
     out.flush()
         .with_context(|| format!("cannot write {}", path.display()))
 }
+
+/// Writes `displayed.csv` (`bench --clock real --quality`): one row per sampled refresh and
+/// controller, the scores whose means and p95 the summary gives, so that their distribution
+/// over the run can be read. `refresh` is the refresh's number (at refresh · P), `frame` the
+/// frame on screen (empty: the last warm-up frame), `warped` 1 where the refresh showed it
+/// warped to its own time, `world_s` the world time the screen shows; `flip` is the screen
+/// against the world at the refresh, `frame_flip` against the world at `world_s`, `age_flip`
+/// the two worlds against each other.
+pub fn write_displayed_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
+    let mut out = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
+    );
+    writeln!(
+        out,
+        "controller,refresh,time_s,frame,warped,world_s,flip,frame_flip,age_flip"
+    )?;
+    for run in runs {
+        let Some(quality) = run.display.as_ref().and_then(|d| d.quality.as_ref()) else {
+            continue;
+        };
+        for s in &quality.scored {
+            let at = s.sample;
+            writeln!(
+                out,
+                "{},{},{:.6},{},{},{:.6},{:.6},{:.6},{:.6}",
+                run.name,
+                at.index,
+                at.time_s,
+                at.frame.map_or_else(String::new, |f| f.to_string()),
+                u8::from(at.warped),
+                at.world_s,
+                s.flip,
+                s.frame_flip,
+                s.age_flip,
+            )?;
+        }
+    }
+    out.flush()
+        .with_context(|| format!("cannot write {}", path.display()))
+}

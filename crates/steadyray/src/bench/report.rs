@@ -195,7 +195,7 @@ pub fn write_summary(
                 displayed: r
                     .display
                     .as_ref()
-                    .and_then(|d| d.quality)
+                    .and_then(|d| d.quality.as_ref())
                     .map(|q| DisplayedEntry {
                         displayed_flip_mean: q.flip_mean,
                         displayed_flip_p95: q.flip_p95,

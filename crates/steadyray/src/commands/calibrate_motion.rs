@@ -313,6 +313,7 @@ fn stimulus_run(
         pictures,
         warps,
         world_s,
+        lead_in_world_s: 0.0,
         quality: None,
         busy_pct: None,
     })
