@@ -173,6 +173,20 @@ pub fn screen_samples(
         .collect()
 }
 
+/// The samples of a bench run that it is scored on: those from its first frame on screen.
+/// Before it the screen shows the bench's last warm-up frame, which a run with `--warp` warps
+/// and one without holds (a start the runs do not share), and which one sample would weigh as
+/// much as a whole `--every` span of the run.
+pub fn run_samples(
+    run: &DisplayRun,
+    period_ms: f64,
+    wants: impl Fn(usize) -> bool,
+) -> Vec<ScreenSample> {
+    let mut samples = screen_samples(run, period_ms, wants);
+    samples.retain(|s| s.frame.is_some());
+    samples
+}
+
 /// The picture a sample shows at the full-scale size: its warp, or the kept frame upscaled,
 /// or black when nothing was on screen yet (no warm-up frame).
 pub fn screen_picture(
@@ -212,8 +226,6 @@ pub struct ScoredSample {
 /// What one run's screen looked like against the references.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DisplayedQuality {
-    /// Sampled refreshes measured.
-    pub samples: usize,
     /// Mean and 95th percentile of FLIP of the screen against the world at the refresh.
     pub flip_mean: f64,
     pub flip_p95: f64,
@@ -244,43 +256,37 @@ pub fn measure(
         pixels_per_degree,
     )?;
     let references = &*references;
-    let rows = samples
+    let scored = samples
         .par_iter()
-        .map(|s| -> Result<[f64; 4]> {
-            let screen = screen_picture(run, s, size)?;
+        .map(|&sample| -> Result<ScoredSample> {
+            let screen = screen_picture(run, &sample, size)?;
             let at = |t_s| -> Result<f64> {
                 Ok(
                     steadyray_quality::flip_at(references.at(t_s)?, &screen, pixels_per_degree)?
                         .mean(),
                 )
             };
-            Ok([
-                at(s.time_s)?,
-                at(s.world_s)?,
-                references.age_flip(s.world_s, s.time_s)?,
-                1000.0 * (s.time_s - s.world_s),
-            ])
+            Ok(ScoredSample {
+                sample,
+                flip: at(sample.time_s)?,
+                frame_flip: at(sample.world_s)?,
+                age_flip: references.age_flip(sample.world_s, sample.time_s)?,
+            })
         })
         .collect::<Result<Vec<_>>>()?;
-    let column = |i: usize| rows.iter().map(|row| row[i]).collect::<Vec<_>>();
-    let (displayed, own, age_flip, age) = (column(0), column(1), column(2), column(3));
+    let column = |of: fn(&ScoredSample) -> f64| scored.iter().map(of).collect::<Vec<_>>();
+    let displayed = column(|s| s.flip);
+    let frame_flip_mean = mean(&column(|s| s.frame_flip)).unwrap_or(0.0);
+    let age_flip_mean = mean(&column(|s| s.age_flip)).unwrap_or(0.0);
+    let age_ms_mean =
+        mean(&column(|s| 1000.0 * (s.sample.time_s - s.sample.world_s))).unwrap_or(0.0);
     Ok(mean(&displayed).map(|flip_mean| DisplayedQuality {
-        samples: displayed.len(),
         flip_mean,
         flip_p95: quantile(&displayed, 0.95).unwrap_or(flip_mean),
-        frame_flip_mean: mean(&own).unwrap_or(0.0),
-        age_flip_mean: mean(&age_flip).unwrap_or(0.0),
-        age_ms_mean: mean(&age).unwrap_or(0.0),
-        scored: samples
-            .iter()
-            .zip(&rows)
-            .map(|(&sample, row)| ScoredSample {
-                sample,
-                flip: row[0],
-                frame_flip: row[1],
-                age_flip: row[2],
-            })
-            .collect(),
+        frame_flip_mean,
+        age_flip_mean,
+        age_ms_mean,
+        scored,
     }))
 }
 
@@ -380,7 +386,7 @@ mod tests {
         assert!((lead_in.sample.world_s + P_S).abs() < 1e-12);
         assert_eq!(lead_in.frame_flip, 0.0);
         assert!(lead_in.age_flip > 0.0 && lead_in.flip == lead_in.age_flip);
-        assert_eq!(fast.scored.len(), fast.samples);
+        assert_eq!(fast.scored.len(), 12);
     }
 
     #[test]

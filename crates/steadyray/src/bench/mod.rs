@@ -10,9 +10,9 @@
 //! `--clock real` runs each controller for a span of display time on the display model
 //! instead ([`real_clock`], `spec/display.md`): the table, `summary.json` and `table.md` then
 //! say what the viewer saw (frames shown per second, repeats, pacing, latency); `--quality`
-//! measures the screen against the world at sampled refreshes ([`displayed`]; each one's scores
-//! in `displayed.csv`) and `--video
-//! DIR` writes the screen and the reference at every refresh ([`video`]).
+//! measures the screen against the world at sampled refreshes ([`displayed`]; each one's
+//! scores in `displayed.csv`) and `--video DIR` writes the screen and the reference at every
+//! refresh ([`video`]).
 
 pub(crate) mod displayed;
 mod experiment;
@@ -30,7 +30,7 @@ use crate::backend::create_renderer;
 use crate::cli::{BoundsArgs, ClockChoice, DisplayArgs, SceneArgs, TemporalChoice};
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use displayed::{TimedReferences, screen_samples, time_key};
+use displayed::{TimedReferences, run_samples, time_key};
 use experiment::{Capture, Sweep, run_controller, search_best_fixed};
 use indicatif::{ProgressBar, ProgressStyle};
 use real_clock::{Keep, RealSweep, run_controller_real};
@@ -714,7 +714,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 });
             }
             let needed: BTreeSet<Option<usize>> =
-                screen_samples(shown, r.display.period_ms(), |i| measured.wants(i))
+                run_samples(shown, r.display.period_ms(), |i| measured.wants(i))
                     .iter()
                     .map(|s| s.frame)
                     .collect();
@@ -815,7 +815,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         let mut needed = Vec::new();
         for run in &runs {
             if let Some(shown) = &run.display {
-                for s in screen_samples(shown, period, |i| measured.wants(i)) {
+                for s in run_samples(shown, period, |i| measured.wants(i)) {
                     needed.extend([s.time_s, s.world_s]);
                 }
             }
@@ -869,14 +869,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             let ppd = ViewingSetup::standard_fhd().pixels_per_degree(width) as f32;
             for run in &mut runs {
                 if let Some(shown) = run.display.as_mut() {
-                    // The scores begin with the run's first frame on screen: before it the
-                    // screen shows the bench's last warm-up frame, which a run with --warp
-                    // warps and one without holds, and which one sample would weigh as much
-                    // as a whole `--every` span of the run.
-                    let samples: Vec<_> = screen_samples(shown, period, |i| measured.wants(i))
-                        .into_iter()
-                        .filter(|s| s.frame.is_some())
-                        .collect();
+                    let samples = run_samples(shown, period, |i| measured.wants(i));
                     shown.quality =
                         displayed::measure(shown, &samples, &mut references, (width, height), ppd)?;
                     shown.pictures.clear();

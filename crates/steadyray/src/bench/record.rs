@@ -109,13 +109,15 @@ pub fn safe_name(name: &str) -> String {
 /// `warp_ms` the warps made while the frame rendered (`--warp`; the display's time for the
 /// frame is `tp_ms + warp_ms`).
 pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
-    let mut out = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    );
-    writeln!(
-        out,
-        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms,speed_mean,speed_p95,target_ms,warp_ms"
-    )?;
+    write_csv(
+        path,
+        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms,speed_mean,speed_p95,target_ms,warp_ms",
+        |out| write_frame_rows(runs, out),
+    )
+}
+
+/// The rows of `frames.csv`.
+fn write_frame_rows(runs: &[ControllerRun], out: &mut dyn Write) -> std::io::Result<()> {
     for run in runs {
         for r in &run.rows {
             let display = r.display.map_or_else(
@@ -151,8 +153,7 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
             )?;
         }
     }
-    out.flush()
-        .with_context(|| format!("cannot write {}", path.display()))
+    Ok(())
 }
 
 /// Writes `displayed.csv` (`bench --clock real --quality`): one row per sampled refresh and
@@ -163,13 +164,15 @@ pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
 /// against the world at the refresh, `frame_flip` against the world at `world_s`, `age_flip`
 /// the two worlds against each other.
 pub fn write_displayed_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
-    let mut out = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    );
-    writeln!(
-        out,
-        "controller,refresh,time_s,frame,warped,world_s,flip,frame_flip,age_flip"
-    )?;
+    write_csv(
+        path,
+        "controller,refresh,time_s,frame,warped,world_s,flip,frame_flip,age_flip",
+        |out| write_displayed_rows(runs, out),
+    )
+}
+
+/// The rows of `displayed.csv`.
+fn write_displayed_rows(runs: &[ControllerRun], out: &mut dyn Write) -> std::io::Result<()> {
     for run in runs {
         let Some(quality) = run.display.as_ref().and_then(|d| d.quality.as_ref()) else {
             continue;
@@ -191,6 +194,20 @@ pub fn write_displayed_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
             )?;
         }
     }
-    out.flush()
+    Ok(())
+}
+
+/// Writes the CSV file `path`: its `header` line, then the rows `rows` writes.
+fn write_csv(
+    path: &Path,
+    header: &str,
+    rows: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    let mut out = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
+    );
+    writeln!(out, "{header}")
+        .and_then(|()| rows(&mut out))
+        .and_then(|()| out.flush())
         .with_context(|| format!("cannot write {}", path.display()))
 }

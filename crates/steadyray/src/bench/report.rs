@@ -202,7 +202,7 @@ pub fn write_summary(
                         frame_flip_mean: q.frame_flip_mean,
                         age_flip_mean: q.age_flip_mean,
                         screen_age_ms_mean: q.age_ms_mean,
-                        displayed_samples: q.samples,
+                        displayed_samples: q.scored.len(),
                     }),
                 motion: MotionEntry::of(r),
             })
