@@ -104,6 +104,17 @@ pub struct GpuFrame {
     pub pad2: u32,
 }
 
+/// The samples one dispatch of the integrator traces per pixel (WGSL `SampleRange`): those
+/// with index i, `first <= i < end`, of the pixel's n ([`crate::sample_ranges`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSampleRange {
+    pub first: u32,
+    pub end: u32,
+    pub pad0: u32,
+    pub pad1: u32,
+}
+
 /// An analytic shape (WGSL `Shape`), with what its intersection test needs precomputed
 /// exactly as the CPU reference precomputes it:
 ///
@@ -471,6 +482,15 @@ mod tests {
                     pad0,
                     pad1,
                     pad2,
+                }),
+            ),
+            (
+                "SampleRange",
+                rust_layout!(GpuSampleRange {
+                    first,
+                    end,
+                    pad0,
+                    pad1
                 }),
             ),
             (

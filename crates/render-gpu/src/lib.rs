@@ -15,6 +15,7 @@ pub mod layout;
 mod pipeline;
 mod raycast;
 mod renderer;
+mod sample_ranges;
 mod scene_buffers;
 mod surface;
 mod temporal;

@@ -2,6 +2,7 @@
 //! so neither a resize nor a quality change rebuilds them.
 
 use crate::error::scoped;
+use crate::sample_ranges;
 use steadyray_render::RenderError;
 
 /// The renderer's WGSL module: layouts and its bindings, sampling rules, eye rays, the
@@ -74,9 +75,13 @@ pub(crate) mod binding {
     pub const SRGB8_LEVELS: u32 = 15;
 }
 
-/// The three entry points of [`SHADER_SOURCE`] over one bind group layout.
+/// The three entry points of [`SHADER_SOURCE`] over one bind group layout (group 0); the
+/// integrator also binds its dispatch's sample range (group 1).
 pub(crate) struct Pipelines {
     pub(crate) bind_group_layout: wgpu::BindGroupLayout,
+    /// Group 1 of [`Pipelines::render`]: one [`crate::layout::GpuSampleRange`] at a dynamic
+    /// offset.
+    pub(crate) sample_range_layout: wgpu::BindGroupLayout,
     /// Traces the image and counts rays per workgroup.
     pub(crate) render: wgpu::ComputePipeline,
     /// Sums the per-workgroup counts into 64-bit totals.
@@ -136,13 +141,20 @@ impl Pipelines {
                 layout_entry(SRGB8_LEVELS, read),
             ],
         });
+        let sample_range_layout = sample_ranges::layout(device);
         let module = shader_module(device, SHADER_SOURCE)?;
-        let build = |entry| compute_pipeline(device, &bind_group_layout, &module, entry);
+        let build = |entry| compute_pipeline(device, &[&bind_group_layout], &module, entry);
         Ok(Self {
-            render: build("render")?,
+            render: compute_pipeline(
+                device,
+                &[&bind_group_layout, &sample_range_layout],
+                &module,
+                "render",
+            )?,
             reduce_counts: build("reduce_counts")?,
             tonemap: build("tonemap")?,
             bind_group_layout,
+            sample_range_layout,
         })
     }
 }
@@ -181,10 +193,10 @@ pub(crate) fn shader_module(
     })
 }
 
-/// The compute pipeline of `entry_point` in `module` over `layout`.
+/// The compute pipeline of `entry_point` in `module` over `layouts` (groups 0, 1, ...).
 pub(crate) fn compute_pipeline(
     device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
+    layouts: &[&wgpu::BindGroupLayout],
     module: &wgpu::ShaderModule,
     entry_point: &str,
 ) -> Result<wgpu::ComputePipeline, RenderError> {
@@ -194,7 +206,7 @@ pub(crate) fn compute_pipeline(
         || {
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(entry_point),
-                bind_group_layouts: &[Some(layout)],
+                bind_group_layouts: &layouts.iter().copied().map(Some).collect::<Vec<_>>(),
                 immediate_size: 0,
             });
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

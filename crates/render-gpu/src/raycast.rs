@@ -164,8 +164,8 @@ impl GpuRayCaster {
                 layout_entry(binding::NEXT_BLOCK, write),
             ],
         });
-        let primary = compute_pipeline(device, &bind_group_layout, &module, "cast_primary")?;
-        let list = compute_pipeline(device, &bind_group_layout, &module, "cast_rays")?;
+        let primary = compute_pipeline(device, &[&bind_group_layout], &module, "cast_primary")?;
+        let list = compute_pipeline(device, &[&bind_group_layout], &module, "cast_rays")?;
 
         use wgpu::BufferUsages as U;
         let storage = U::STORAGE | U::COPY_DST;

@@ -6,6 +6,7 @@ use crate::device::GpuContext;
 use crate::error::{gpu_error, scoped};
 use crate::layout::{GpuFrame, WORKGROUP_SIZE, counter_stride};
 use crate::pipeline::{Pipelines, binding, buffer_entry};
+use crate::sample_ranges::SampleRanges;
 use crate::scene_buffers::{GpuWorld, PackedScene, SceneBuffers};
 use crate::temporal::TemporalPass;
 use crate::timing::{GpuTimer, TIMESTAMP_BYTES};
@@ -63,6 +64,8 @@ enum Shown {
 pub struct GpuRenderer {
     ctx: GpuContext,
     pipelines: Pipelines,
+    /// The integrator's dispatches of a frame, each with its share of the samples.
+    sample_ranges: SampleRanges,
     timer: Option<GpuTimer>,
     frame_uniform: wgpu::Buffer,
     scene_buffers: SceneBuffers,
@@ -87,6 +90,12 @@ impl GpuRenderer {
     /// Builds the pipelines and buffers on an opened device.
     fn from_context(ctx: GpuContext) -> Result<Self, RenderError> {
         let pipelines = Pipelines::new(&ctx.device)?;
+        let sample_ranges = SampleRanges::new(
+            &ctx.device,
+            &ctx.queue,
+            &pipelines.sample_range_layout,
+            ctx.adapter.is_software,
+        );
         let timer = ctx
             .timestamps
             .then(|| GpuTimer::new(&ctx.device, &ctx.queue))
@@ -105,6 +114,7 @@ impl GpuRenderer {
         Ok(Self {
             ctx,
             pipelines,
+            sample_ranges,
             timer,
             frame_uniform,
             scene_buffers,
@@ -416,7 +426,8 @@ impl Renderer for GpuRenderer {
             });
             pass.set_pipeline(&self.pipelines.render);
             pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(groups_x, groups_y, 1);
+            self.sample_ranges
+                .dispatch(&mut pass, settings.spp, (groups_x, groups_y));
         }
         if let Some(step) = &step {
             self.temporal.encode_resolve(
@@ -633,7 +644,7 @@ pub(crate) mod tests {
             Err(e) => e.to_string(),
             Ok(module) => compute_pipeline(
                 device,
-                &renderer.pipelines.bind_group_layout,
+                &[&renderer.pipelines.bind_group_layout],
                 &module,
                 "main",
             )
@@ -750,7 +761,7 @@ pub(crate) mod tests {
             ],
         });
         let module = shader_module(device, source).unwrap();
-        let pipeline = compute_pipeline(device, &layout, &module, "main").unwrap();
+        let pipeline = compute_pipeline(device, &[&layout], &module, "main").unwrap();
         let bytes = (values.len() * 4) as u64;
         let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("tone map test values"),

@@ -138,8 +138,8 @@ impl TemporalPass {
             0,
         );
         Ok(Self {
-            resolve: compute_pipeline(device, &layout, &module, "resolve")?,
-            tonemap: compute_pipeline(device, &layout, &module, "tonemap_history")?,
+            resolve: compute_pipeline(device, &[&layout], &module, "resolve")?,
+            tonemap: compute_pipeline(device, &[&layout], &module, "tonemap_history")?,
             layout,
             params,
             moves,

@@ -68,9 +68,9 @@ impl WarpPass {
         let motion = GrowBuffer::new(device, "warp motion", wgpu::BufferUsages::STORAGE, 0);
         let linear = GrowBuffer::new(device, "warp linear", wgpu::BufferUsages::STORAGE, 0);
         Ok(Self {
-            motion_pass: compute_pipeline(device, &layout, &module, "warp_motion")?,
-            colour_pass: compute_pipeline(device, &layout, &module, "warp_colour")?,
-            display_pass: compute_pipeline(device, &layout, &module, "warp_display")?,
+            motion_pass: compute_pipeline(device, &[&layout], &module, "warp_motion")?,
+            colour_pass: compute_pipeline(device, &[&layout], &module, "warp_colour")?,
+            display_pass: compute_pipeline(device, &[&layout], &module, "warp_display")?,
             layout,
             params,
             motion,

@@ -129,17 +129,22 @@ fn references_draw_the_same_reserved_samples() {
     }
 }
 
+/// The corridor's glass sphere from above and close, filling most of the frame.
+fn glass_view() -> Camera {
+    Camera::look_at(
+        Vec3::new(0.3, 1.2, -2.6),
+        Vec3::new(0.6, 0.45, -4.0),
+        Vec3::Y,
+        40.0,
+    )
+}
+
 #[test]
 fn corridor_other_views() {
     let scene = builtin("corridor").unwrap();
     // Behind the camera (the three diffuse spheres), then down at the glass sphere.
     let behind = scene.camera_at(1, 2);
-    let glass = Camera::look_at(
-        Vec3::new(0.3, 1.2, -2.6),
-        Vec3::new(0.6, 0.45, -4.0),
-        Vec3::Y,
-        40.0,
-    );
+    let glass = glass_view();
     check_parity(
         "corridor yaw pi",
         &scene,
@@ -153,6 +158,23 @@ fn corridor_other_views() {
         &glass,
         (96, 64),
         &[(1.0, 6), (4.0, 16)],
+    );
+}
+
+/// A frame whose pixels take more samples than one dispatch traces (16 a pixel on a software
+/// adapter, 256 on hardware) continues each pixel's sum over several dispatches and keeps its
+/// bits. Lavapipe ends an invocation's loops after 65,535 iterations, which a glass pixel at
+/// R = 16 reached after about 124 samples in one dispatch: the rest came back black.
+#[test]
+fn many_samples_in_several_dispatches() {
+    let scene = builtin("corridor").unwrap();
+    let glass = glass_view();
+    check_parity(
+        "corridor glass, many samples",
+        &scene,
+        &glass,
+        (48, 32),
+        &[(40.5, 16), (300.0, 16)],
     );
 }
 

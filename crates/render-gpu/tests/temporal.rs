@@ -84,6 +84,8 @@ fn a_sweep_with_changing_scale_and_quality() {
         (1.0, 1.5, 8),
         (0.25, 1.0, 3),
         (0.5, 4.0, 5),
+        // More samples than one dispatch of a software adapter traces.
+        (0.75, 18.5, 5),
     ];
     let steps: Vec<Step> = (0..15)
         .map(|k| {

@@ -109,18 +109,33 @@ fn eye_ray_dir(px: u32, py: u32, uv: vec2<f32>) -> vec3<f32> {
     );
 }
 
+// Traces the samples of pixel (px, py) in this dispatch's range. The pixel's running sum
+// waits in the image between dispatches (alpha 0), and the dispatch of its last sample
+// writes the mean: the same additions in the same order as in one dispatch.
 fn render_pixel(px: u32, py: u32) {
     shadow_rays = 0u;
     let n = samples_for_pixel(px, py, frame.spp);
+    let first = sample_range.first;
+    if first >= n {
+        return;
+    }
+    let end = min(sample_range.end, n);
+    let index = py * frame.width + px;
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < n; i++) {
+    if first > 0u {
+        sum = image[index].xyz;
+    }
+    for (var i = first; i < end; i++) {
         let dir = eye_ray_dir(px, py, jittered_sample(i, n, frame.jitter));
         record_begin(frame.temporal != 0u && i == 0u, frame.eye, dir);
         sum += trace_sample(px, py, i + frame.sample_base, frame.eye, dir);
     }
-    let index = py * frame.width + px;
-    image[index] = vec4<f32>(sum / f32(n), 1.0);
-    if frame.temporal != 0u {
+    if end == n {
+        image[index] = vec4<f32>(sum / f32(n), 1.0);
+    } else {
+        image[index] = vec4<f32>(sum, 0.0);
+    }
+    if frame.temporal != 0u && first == 0u {
         record_store(index);
     }
     let before = atomicAdd(&group_rays[frame.max_depth + 1u], shadow_rays);
@@ -144,7 +159,19 @@ fn render(
     }
     workgroupBarrier();
     let base = (wid.y * frame.groups_x + wid.x) * frame.counter_stride;
-    for (var i = lid; i < frame.counter_stride; i += WORKGROUP_SIZE * WORKGROUP_SIZE) {
-        group_counts[base + i] = atomicLoad(&group_rays[i]);
+    if sample_range.first == 0u {
+        for (var i = lid; i < frame.counter_stride; i += WORKGROUP_SIZE * WORKGROUP_SIZE) {
+            group_counts[base + i] = atomicLoad(&group_rays[i]);
+        }
+    } else if lid == 0u {
+        // A later dispatch adds its counts to the frame's, carrying out of the shadow count.
+        let shadow = base + frame.max_depth + 1u;
+        let shadow_before = group_counts[shadow];
+        for (var i = 0u; i < frame.counter_stride; i++) {
+            group_counts[base + i] += atomicLoad(&group_rays[i]);
+        }
+        if group_counts[shadow] < shadow_before {
+            group_counts[shadow + 1u] += 1u;
+        }
     }
 }

@@ -87,6 +87,15 @@ struct Frame {
     pad2: u32,
 }
 
+// The samples one dispatch of the integrator traces per pixel (GpuSampleRange): those with
+// index i, first <= i < end, of the pixel's n.
+struct SampleRange {
+    first: u32,
+    end: u32,
+    pad0: u32,
+    pad1: u32,
+}
+
 // A camera frame (GpuCameraView; CameraFrame of spec/corridor.md) for the temporal history's
 // size.
 struct CameraView {

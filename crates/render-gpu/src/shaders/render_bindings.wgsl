@@ -1,6 +1,6 @@
 // The integrator's bind group (src/pipeline.rs, `binding`): the frame, the scene, the image,
 // the ray counters, the tone map's levels and, in the temporal mode, the pixels' geometry
-// records.
+// records. Group 1: the samples this dispatch traces (src/sample_ranges.rs).
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 // The planes, then the frame's spheres and quads.
@@ -30,3 +30,5 @@
 @group(0) @binding(14) var<storage, read> surface_ids: array<u32>;
 // The smallest radiance of each tone-map level 1..=255 (srgb.wgsl).
 @group(0) @binding(15) var<storage, read> srgb8_levels: array<f32>;
+// The samples of each pixel this dispatch of the integrator traces.
+@group(1) @binding(0) var<uniform> sample_range: SampleRange;
