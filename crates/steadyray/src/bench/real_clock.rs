@@ -42,10 +42,11 @@ pub struct RealSweep {
     pub warp: bool,
 }
 
-/// Refreshes past a frame's start whose warps of the frame on screen are made before the
-/// next frame renders (the bench works in turn, so it cannot know yet how many that frame
-/// will leave without a new frame): a frame slower than this leaves the refreshes after
-/// them unwarped, counted as missed.
+/// The most warps of the frame on screen made before the next frame renders. The bench works
+/// in turn, so it cannot know yet how many refreshes that frame will leave without a new
+/// frame: it makes those the frame would leave if it took as long as the last one, and one
+/// more ([`warps_to_make`]); a frame slower than that leaves the refreshes after them
+/// unwarped, counted as missed.
 pub const WARPS_AHEAD: usize = 4;
 
 /// Which samples of the screen (at the display's refresh rate: sample i at i·P) a run keeps
@@ -129,7 +130,7 @@ pub struct Warps {
     /// What each warp shown cost, ms.
     pub ms: Vec<f64>,
     /// Refreshes shown unwarped that should have been warped: without a new frame, beyond
-    /// the [`WARPS_AHEAD`] made for them or whose warp would have cost the next frame its
+    /// the warps made ahead for them ([`warps_to_make`]) or whose warp would have cost the next frame its
     /// refresh, or a frame's first showing whose warp did not fit before its refresh.
     pub missed: usize,
 }
@@ -172,17 +173,32 @@ struct Ahead {
     picture: Option<Rgb8Image>,
 }
 
-/// The warps of the frame on screen to the refreshes from `first` (at most
-/// [`WARPS_AHEAD`], before the run's end `end_ms`), each at its refresh's world time, with
-/// the pictures `keep` asks for.
+/// How many warps to make ahead of a frame starting at `start_ms`, the first refresh it may
+/// leave without a new frame being `first`: those before `start_ms + last_busy_ms` (the last
+/// frame's render and hand-over), and one more for a frame slower than the last, at most
+/// [`WARPS_AHEAD`]. A warp made and not shown is work for nothing that leaves the renderer
+/// idle meanwhile (on the CPU a warp at 640 × 360 costs about 7 ms; a GPU's clocks fall when
+/// it idles): with four made before every frame, frames at one refresh (which leave none)
+/// took 36 % of a CPU run's wall time.
+fn warps_to_make(first: usize, start_ms: f64, last_busy_ms: f64, period_ms: f64) -> usize {
+    let complete = start_ms + last_busy_ms;
+    let held = (first..)
+        .take_while(|&i| (i as f64 * period_ms) < complete - TIME_EPS_MS)
+        .take(WARPS_AHEAD)
+        .count();
+    (held + 1).min(WARPS_AHEAD)
+}
+
+/// The warps of the frame on screen to the `count` refreshes from `first` (before the run's
+/// end `end_ms`), each at its refresh's world time, with the pictures `keep` asks for.
 fn warps_ahead(
     source: &mut dyn FrameSource,
-    first: usize,
+    (first, count): (usize, usize),
     period_ms: f64,
     end_ms: f64,
     keep: Keep,
 ) -> Result<Vec<Ahead>> {
-    (first..first + WARPS_AHEAD)
+    (first..first + count)
         .map(|refresh| (refresh, refresh as f64 * period_ms))
         .take_while(|&(_, time_ms)| time_ms < end_ms - TIME_EPS_MS)
         .map(|(refresh, time_ms)| {
@@ -293,7 +309,7 @@ pub fn run_controller_real(
     progress.set_message(name.to_string());
     let mut clock = RealClock::new(sweep.display, sweep.duration_s)?;
     let (period, end) = (sweep.display.period_ms(), clock.duration_ms());
-    let (mut warm_picture, mut lead_in_world_s) = (None, 0.0);
+    let (mut warm_picture, mut lead_in_world_s, mut last_busy_ms) = (None, 0.0, 0.0);
     for k in (1..=sweep.warmup).rev() {
         let t_s = -f64::from(k) * period / 1000.0;
         lead_in_world_s = t_s;
@@ -301,7 +317,8 @@ pub fn run_controller_real(
         let handed = source.hand_over()?;
         // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
         let _ = controller.observe(&m.report);
-        clock.expect(m.report.tp_ms + handed.ms);
+        last_busy_ms = m.report.tp_ms + handed.ms;
+        clock.expect(last_busy_ms);
         warm_picture = handed.image;
     }
     let mut screen = OnScreen {
@@ -318,7 +335,9 @@ pub fn run_controller_real(
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
         let ahead = if sweep.warp {
-            warps_ahead(source, first_held(&screen, period), period, end, keep)
+            let first = first_held(&screen, period);
+            let count = warps_to_make(first, slot.start_ms, last_busy_ms, period);
+            warps_ahead(source, (first, count), period, end, keep)
                 .with_context(|| format!("{name}: before frame {}", slot.index))?
         } else {
             Vec::new()
@@ -331,13 +350,8 @@ pub fn run_controller_real(
             .frame(at, q)
             .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
         let handed = source.hand_over()?;
-        let (used, held) = warps_used(
-            &ahead,
-            slot.start_ms,
-            m.report.tp_ms + handed.ms,
-            period,
-            end,
-        );
+        last_busy_ms = m.report.tp_ms + handed.ms;
+        let (used, held) = warps_used(&ahead, slot.start_ms, last_busy_ms, period, end);
         warps.missed += held - used;
         // Summed from +0 (a float sum of nothing is −0, which frames.csv would print).
         let warp_ms = ahead[..used].iter().fold(0.0, |sum, w| sum + w.ms);
@@ -645,6 +659,21 @@ mod tests {
                 picture: None,
             })
             .collect()
+    }
+
+    #[test]
+    fn warps_are_made_for_the_refreshes_a_frame_as_slow_as_the_last_would_hold_and_one_more() {
+        // P = 10 ms; the frame starts at 2 ms and may leave refreshes from 1 (10 ms) held.
+        // The last took 7 ms: this one would complete at 9 ms and hold none; one warp.
+        assert_eq!(warps_to_make(1, 2.0, 7.0, 10.0), 1);
+        // 18 ms (complete at 20 ms, refresh 2 shows it): refresh 1 held, two warps.
+        assert_eq!(warps_to_make(1, 2.0, 18.0, 10.0), 2);
+        // 19 ms: held over refreshes 1 and 2, three warps.
+        assert_eq!(warps_to_make(1, 2.0, 19.0, 10.0), 3);
+        // Never more than WARPS_AHEAD, however slow.
+        assert_eq!(warps_to_make(1, 2.0, 500.0, 10.0), WARPS_AHEAD);
+        // The warm-up frame's refreshes start at 0.
+        assert_eq!(warps_to_make(0, 0.0, 15.0, 10.0), 3);
     }
 
     #[test]
