@@ -229,6 +229,7 @@ impl Renderer for CpuRenderer {
                 let pattern = SamplePattern {
                     jitter,
                     sample_base,
+                    still_frame: 0,
                 };
                 self.pool
                     .install(|| render::render_frame(world, &frame, settings, pattern, outputs))
@@ -247,6 +248,7 @@ impl Renderer for CpuRenderer {
                 let pattern = SamplePattern {
                     jitter: temporal.jitter,
                     sample_base: sample_base(temporal.index),
+                    still_frame: temporal.still_frame(),
                 };
                 history.prepare(width, height);
                 self.pool.install(|| {

@@ -18,6 +18,8 @@ use steadyray_scene::camera::CameraFrame;
 pub(crate) struct SamplePattern {
     pub jitter: [f32; 2],
     pub sample_base: u32,
+    /// The frame's index in a still view (`TemporalFrame::still_frame`), else 0.
+    pub still_frame: u32,
 }
 
 /// A frame's samples as its pixels draw them: their sub-pixel positions for the two sample
@@ -36,7 +38,7 @@ impl FrameSamples {
         let fewer = spp.floor() as u32;
         let table = |n: u32| {
             (0..n)
-                .map(|i| jittered_sample(i, n, pattern.jitter))
+                .map(|i| jittered_sample(i, n, pattern.jitter, pattern.still_frame))
                 .collect()
         };
         Self {

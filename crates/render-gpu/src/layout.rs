@@ -99,7 +99,9 @@ pub struct GpuFrame {
     pub temporal: u32,
     /// Shapes in the shape buffer: the planes, then the frame's spheres and quads.
     pub shape_count: u32,
-    pub pad0: u32,
+    /// The frame's index in a still view (`TemporalFrame::still_frame`), else 0: its
+    /// samples take new positions (`temporal::still_sample`).
+    pub still_frame: u32,
     pub pad1: u32,
     pub pad2: u32,
 }
@@ -479,7 +481,7 @@ mod tests {
                     sample_base,
                     temporal,
                     shape_count,
-                    pad0,
+                    still_frame,
                     pad1,
                     pad2,
                 }),

@@ -393,6 +393,7 @@ impl Renderer for GpuRenderer {
             sample_base: step.map_or(plain_base, |s| sample_base(s.index)),
             temporal: u32::from(step.is_some()),
             shape_count,
+            still_frame: step.map_or(0, |s| s.still_frame()),
             ..Default::default()
         };
         let shown = history_pixels.unwrap_or(settings.pixels());

@@ -105,7 +105,11 @@ fn a_sweep_with_changing_scale_and_quality() {
 fn a_still_camera_then_a_moving_eye() {
     let scene = builtin("corridor").unwrap();
     let set = settings(64, 36, 1.0, 6);
-    let mut steps: Vec<Step> = (0..4).map(|_| (scene.camera, 0.0, set)).collect();
+    // A still view takes new sample positions every frame (odd, even and fractional S).
+    let mut steps: Vec<Step> = [1.0, 1.0, 3.0, 3.0, 4.0, 2.5, 2.5]
+        .into_iter()
+        .map(|spp| (scene.camera, 0.0, settings(64, 36, spp, 6)))
+        .collect();
     // The eye walks toward the glass sphere: parallax, disocclusions, the specular cap.
     steps.extend((0..6).map(|k| {
         let eye = Vec3::new(0.1 * k as f32, 1.4, -0.3 * k as f32);

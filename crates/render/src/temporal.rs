@@ -142,14 +142,22 @@ pub fn jittered(offset: (f32, f32), j: [f32; 2]) -> (f32, f32) {
 }
 
 /// The sub-pixel position of sample `i` of a pixel that takes `n` samples in a frame of
-/// jitter `j`: its [`crate::sampling::sample_offset`] moved by `j` ([`jittered`]), the
-/// mirrored sample of each pair by −`j`, so that every pair stays mirrored about the pixel
-/// centre and a pixel of two or more samples keeps its centroid there in every frame (moving
-/// the whole pattern by `j` shifted each frame's image by up to a fifth of a pixel, which
-/// FLIP scored 1.25x worse than the plain frame at S = 16). The centre sample of an odd
-/// n ≥ 3 stays put; the one sample of n = 1 moves by `j`, which is what the history gathers
-/// its sub-pixel detail from.
-pub fn jittered_sample(i: u32, n: u32, j: [f32; 2]) -> (f32, f32) {
+/// jitter `j`; `still_frame` is the frame's index k in a still view (its
+/// [`TemporalFrame::still_frame`]), 0 for any other frame.
+///
+/// A moving frame (and a plain one, J = 0): each [`crate::sampling::sample_offset`] moved by
+/// `j` ([`jittered`]), the mirrored sample of each pair by −`j`, so that every pair stays
+/// mirrored about the pixel centre and a pixel of two or more samples keeps its centroid
+/// there in every frame (moving the whole pattern by `j` shifted each frame's image by up to
+/// a fifth of a pixel, which FLIP scored 1.25x worse than the plain frame at S = 16). The
+/// centre sample of an odd n ≥ 3 stays put; the one sample of n = 1 moves by `j`, which is
+/// what the history gathers its sub-pixel detail from.
+///
+/// A still frame: [`still_sample`], new positions in every frame.
+pub fn jittered_sample(i: u32, n: u32, j: [f32; 2], still_frame: u32) -> (f32, f32) {
+    if still_frame != 0 {
+        return still_sample(i, n, j, still_frame);
+    }
     let offset = sample_offset(i, n);
     let odd = n & 1;
     if n <= 1 {
@@ -161,6 +169,40 @@ pub fn jittered_sample(i: u32, n: u32, j: [f32; 2]) -> (f32, f32) {
     } else {
         jittered(offset, j)
     }
+}
+
+/// Sample `i` of a pixel's `n` in frame k = `still_frame` ≥ 1 of a still view, of jitter
+/// `j`: the frame takes the next ⌊n/2⌋ mirrored pairs of the R2 sequence after the k·⌊n/2⌋
+/// that frames 0 to k − 1 took (pair m at 0.5 + m · (1/φ₂, 1/φ₂²) and its mirror image about
+/// the centre, in 0.32 fixed point, exact on both backends at any k); the one sample of
+/// n = 1 sits at 0.5 + `j` (where its value lands), and the centre sample of an odd n ≥ 3 at
+/// `j` itself (the jitter is ± m′ · (1/φ₂, 1/φ₂²) too, so at 0.5 + `j` it would land on
+/// pair points of other frames). The moving rule's pairs moved
+/// by ±J_k land on the same R2 points frame after frame (the jitter is that sequence too:
+/// pair m moved by J_k = m′ · (1/φ₂, 1/φ₂²) is pair m + m′), and an odd n's centre sample
+/// never moves, so a still history of 31 frames at S = 16 held about 100 distinct positions
+/// of its 496 samples and converged no better than one frame at S = 64, and at S = 3 a third
+/// of its samples sat at the centre (`docs/temporal.md`, *The frame's samples*).
+pub fn still_sample(i: u32, n: u32, j: [f32; 2], still_frame: u32) -> (f32, f32) {
+    let odd = n & 1;
+    if n <= 1 {
+        return jittered((0.5, 0.5), j);
+    }
+    if i < odd {
+        return (j[0], j[1]);
+    }
+    let pair = i - odd;
+    let m = (pair / 2 + 1).wrapping_add(still_frame.wrapping_mul(n / 2));
+    let [u, v] = JITTER_STEP.map(|step| {
+        let point = m.wrapping_mul(step).wrapping_add(0x8000_0000);
+        let point = if pair & 1 == 1 {
+            point.wrapping_neg()
+        } else {
+            point
+        };
+        (point >> 8) as f32 * (1.0 / 16_777_216.0)
+    });
+    (u, v)
 }
 
 /// Where a low-resolution pixel's value lands inside it: its centre moved by the jitter,
@@ -371,6 +413,14 @@ pub struct TemporalFrame {
     pub spp: f32,
 }
 
+impl TemporalFrame {
+    /// k for a still frame (k ≥ 1: the first frame of a history is never still), 0 for any
+    /// other: what [`jittered_sample`] takes to place a still view's samples anew.
+    pub fn still_frame(&self) -> u32 {
+        if self.still { self.index } else { 0 }
+    }
+}
+
 /// The host side of a history: its size, the number of frames it holds and the last
 /// frame's camera and scene time. Both backends keep one and ask it for each frame's
 /// [`TemporalFrame`].
@@ -475,17 +525,73 @@ mod tests {
     fn jittered_samples_keep_their_centroid_at_the_centre() {
         for k in 1..40 {
             let j = jitter(k);
-            assert_eq!(jittered_sample(0, 1, j), jittered(sample_offset(0, 1), j));
+            assert_eq!(
+                jittered_sample(0, 1, j, 0),
+                jittered(sample_offset(0, 1), j)
+            );
             for n in 2..=9 {
                 let (mut u, mut v) = (0.0f64, 0.0f64);
                 for i in 0..n {
-                    let (a, b) = jittered_sample(i, n, j);
+                    let (a, b) = jittered_sample(i, n, j, 0);
                     assert!((0.0..1.0).contains(&a) && (0.0..1.0).contains(&b));
                     (u, v) = (u + f64::from(a), v + f64::from(b));
                 }
                 let centroid = [u / f64::from(n), v / f64::from(n)];
                 assert!(
                     centroid.iter().all(|c| (c - 0.5).abs() < 1e-5),
+                    "n = {n}, k = {k}: {centroid:?}"
+                );
+            }
+        }
+    }
+
+    /// The positions of a still history of `frames` frames (frame 0 plain, then still
+    /// frames 1, 2, ...) at n samples a pixel.
+    fn still_history_positions(frames: u32, n: u32) -> Vec<(f32, f32)> {
+        (0..frames)
+            .flat_map(|k| (0..n).map(move |i| jittered_sample(i, n, jitter(k), k)))
+            .collect()
+    }
+
+    #[test]
+    fn a_still_view_takes_new_positions_in_every_frame() {
+        for n in [2, 3, 4, 16] {
+            let positions = still_history_positions(31, n);
+            let distinct: std::collections::BTreeSet<_> = positions
+                .iter()
+                .map(|&(u, v)| (u.to_bits(), v.to_bits()))
+                .collect();
+            assert_eq!(distinct.len(), positions.len(), "n = {n}");
+            assert!(
+                positions
+                    .iter()
+                    .all(|&(u, v)| (0.0..1.0).contains(&u) && (0.0..1.0).contains(&v))
+            );
+        }
+        // The moving rule's positions collapse onto the same R2 points frame after frame.
+        let moving: std::collections::BTreeSet<_> = (0..31)
+            .flat_map(|k| (0..16).map(move |i| jittered_sample(i, 16, jitter(k), 0)))
+            .map(|(u, v)| ((u * 1e4) as i32, (v * 1e4) as i32))
+            .collect();
+        assert!(moving.len() < 200, "{} of 496", moving.len());
+    }
+
+    #[test]
+    fn a_still_frame_keeps_an_even_pixels_centroid_and_moves_an_odd_ones_centre_sample_by_the_jitter()
+     {
+        for k in 1..40 {
+            let j = jitter(k);
+            assert_eq!(jittered_sample(0, 1, j, k), jittered((0.5, 0.5), j));
+            assert_eq!(jittered_sample(0, 3, j, k), (j[0], j[1]));
+            for n in [2, 4, 6, 16] {
+                let (mut u, mut v) = (0.0f64, 0.0f64);
+                for i in 0..n {
+                    let (a, b) = jittered_sample(i, n, j, k);
+                    (u, v) = (u + f64::from(a), v + f64::from(b));
+                }
+                let centroid = [u / f64::from(n), v / f64::from(n)];
+                assert!(
+                    centroid.iter().all(|c| (c - 0.5).abs() < 1e-6),
                     "n = {n}, k = {k}: {centroid:?}"
                 );
             }

@@ -126,7 +126,7 @@ fn render_pixel(px: u32, py: u32) {
         sum = image[index].xyz;
     }
     for (var i = first; i < end; i++) {
-        let dir = eye_ray_dir(px, py, jittered_sample(i, n, frame.jitter));
+        let dir = eye_ray_dir(px, py, jittered_sample(i, n, frame.jitter, frame.still_frame));
         record_begin(frame.temporal != 0u && i == 0u, frame.eye, dir);
         sum += trace_sample(px, py, i + frame.sample_base, frame.eye, dir);
     }

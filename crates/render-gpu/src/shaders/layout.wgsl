@@ -82,7 +82,9 @@ struct Frame {
     // Shapes in `shapes`: the planes, then the frame's spheres and quads (the surface id of
     // every mesh triangle in the temporal record).
     shape_count: u32,
-    pad0: u32,
+    // The frame's index in a still view, else 0: its samples take new positions
+    // (sampling.wgsl, still_sample).
+    still_frame: u32,
     pad1: u32,
     pad2: u32,
 }

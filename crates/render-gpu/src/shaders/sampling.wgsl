@@ -44,10 +44,14 @@ fn jittered(offset: vec2<f32>, j: vec2<f32>) -> vec2<f32> {
     return t - floor(t);
 }
 
-// Sample i of n in a frame of jitter j: each mirrored pair moved by +j and -j, so that a
-// pixel of two or more samples keeps its centroid at the centre; the centre sample of an
-// odd n >= 3 stays put (steadyray_render::temporal::jittered_sample).
-fn jittered_sample(i: u32, n: u32, j: vec2<f32>) -> vec2<f32> {
+// Sample i of n in a frame of jitter j, still_frame its index in a still view (else 0). A
+// moving frame: each mirrored pair moved by +j and -j, so that a pixel of two or more samples
+// keeps its centroid at the centre; the centre sample of an odd n >= 3 stays put. A still
+// frame: still_sample (steadyray_render::temporal::jittered_sample).
+fn jittered_sample(i: u32, n: u32, j: vec2<f32>, still_frame: u32) -> vec2<f32> {
+    if still_frame != 0u {
+        return still_sample(i, n, j, still_frame);
+    }
     let offset = sample_offset(i, n);
     let odd = n & 1u;
     if n <= 1u {
@@ -60,6 +64,30 @@ fn jittered_sample(i: u32, n: u32, j: vec2<f32>) -> vec2<f32> {
         return jittered(offset, -j);
     }
     return jittered(offset, j);
+}
+
+// The R2 sequence's generators 1/phi2, 1/phi2^2 in 0.32 fixed point (the jitter's).
+const R2_STEP: vec2<u32> = vec2<u32>(0xc13fa9a9u, 0x91e10da6u);
+
+// Sample i of n in frame still_frame >= 1 of a still view: the frame's own mirrored R2 pairs
+// (those after the still_frame * floor(n / 2) of the frames before it), in 0.32 fixed point;
+// the one sample of n = 1 at 0.5 + j, the centre sample of an odd n >= 3 at j
+// (steadyray_render::temporal::still_sample).
+fn still_sample(i: u32, n: u32, j: vec2<f32>, still_frame: u32) -> vec2<f32> {
+    let odd = n & 1u;
+    if n <= 1u {
+        return jittered(vec2<f32>(0.5, 0.5), j);
+    }
+    if i < odd {
+        return j;
+    }
+    let pair = i - odd;
+    let m = pair / 2u + 1u + still_frame * (n / 2u);
+    var point = vec2<u32>(m) * R2_STEP + vec2<u32>(0x80000000u);
+    if (pair & 1u) == 1u {
+        point = vec2<u32>(0u) - point;
+    }
+    return vec2<f32>(point >> vec2<u32>(8u)) * (1.0 / 16777216.0);
 }
 
 var<private> BAYER8: array<u32, 64> = array<u32, 64>(
