@@ -5,7 +5,8 @@
 #   1. pass: the pass's cost at 1920x1080 (a plain frame against the same view after 30
 #      frames of history, alternating; render_ms by GPU timestamps);
 #   2. still: a still corridor view, one frame at S against the history of 31 frames (1 s at
-#      the paper's band) at S, both against a reference at S = STILL_REF_SPP (steadyray compare);
+#      the paper's band) at S, both against a reference at S = STILL_REF_SPP (default 4096:
+#      a history of 31 frames at S = 16 holds 496 samples; steadyray compare);
 #   3. paper, refresh, paper-reversed, refresh2: the corridor under the real clock at the
 #      paper's band, at one refresh, at the paper's band again with the history's run first
 #      (the GPU's clocks follow its load), and at two refreshes, each controller without and
@@ -43,7 +44,7 @@ duration=${DURATION:-4}
 repeat=${REPEAT:-3}
 budget=${BUDGET_S:-520}
 ref_spp=${REF_SPP:-256}
-still_ref_spp=${STILL_REF_SPP:-1024}
+still_ref_spp=${STILL_REF_SPP:-4096}
 still_spp=${STILL_SPP:-1 4 16}
 work=${WORK:-/tmp/steadyray-temporal}
 mkdir -p "$out" "$work"
