@@ -1,0 +1,127 @@
+//! The methods the suite compares: each is a set of `steadyray bench` flags added to the
+//! suite's common ones (scene, path, clock, duration, quality, video), so a method reads as
+//! the command a user would type.
+
+use serde::{Deserialize, Serialize};
+
+/// The placeholder in a method's flags for the scene's calibrated `perceptual` model (the
+/// runner calibrates it once per scene and caches it).
+pub const MODEL_PLACEHOLDER: &str = "{motion-model}";
+
+/// One method: a name for tables and folders, a line saying what it is, and its flags.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Method {
+    /// The name tables and folders use (letters, digits, `-` and `+`).
+    pub name: String,
+    /// What it is, in a few words.
+    pub label: String,
+    /// The bench flags that make it, e.g. `["--band", "refresh", "--controllers", "predictive"]`.
+    pub flags: Vec<String>,
+}
+
+impl Method {
+    fn new(name: &str, label: &str, flags: &str) -> Self {
+        Self {
+            name: name.to_string(),
+            label: label.to_string(),
+            flags: flags.split_whitespace().map(str::to_string).collect(),
+        }
+    }
+
+    /// Whether the method needs the scene's calibrated `perceptual` model.
+    pub fn needs_motion_model(&self) -> bool {
+        self.flags.iter().any(|f| f.contains(MODEL_PLACEHOLDER))
+    }
+
+    /// The flags with the model placeholder replaced by `model` (a path).
+    pub fn flags_with_model(&self, model: &str) -> Vec<String> {
+        self.flags
+            .iter()
+            .map(|f| f.replace(MODEL_PLACEHOLDER, model))
+            .collect()
+    }
+}
+
+/// The history and its warped refreshes.
+const HISTORY: &str = "--temporal on --warp";
+
+/// The methods that matter: `predictive` at the paper's band and at bands aligned with one
+/// and two refreshes, each with and without the history and its warps; `perceptual` with the
+/// scene's calibrated model; the paper's fixed quality S = 1, R = 16 at the paper's band.
+pub fn standard_methods() -> Vec<Method> {
+    let predictive = "--controllers predictive";
+    vec![
+        Method::new("paper", "predictive, [15, 20] ms", predictive),
+        Method::new(
+            "paper+history",
+            "predictive, [15, 20] ms, history and warps",
+            &format!("{predictive} {HISTORY}"),
+        ),
+        Method::new(
+            "refresh",
+            "predictive, a frame every refresh",
+            &format!("{predictive} --band refresh"),
+        ),
+        Method::new(
+            "refresh+history",
+            "predictive, a frame every refresh, history and warps",
+            &format!("{predictive} --band refresh {HISTORY}"),
+        ),
+        Method::new(
+            "refresh2",
+            "predictive, a frame every two refreshes",
+            &format!("{predictive} --band refresh:2"),
+        ),
+        Method::new(
+            "refresh2+history",
+            "predictive, a frame every two refreshes, history and warps",
+            &format!("{predictive} --band refresh:2 {HISTORY}"),
+        ),
+        Method::new(
+            "perceptual",
+            "perceptual, the scene's calibrated model",
+            &format!("--controllers perceptual:model={MODEL_PLACEHOLDER}"),
+        ),
+        Method::new(
+            "fixed-s1-r16",
+            "fixed S = 1, R = 16 (the paper's baseline), [15, 20] ms",
+            "--controllers fixed:spp=1;depth=16 --no-best-fixed",
+        ),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_fit_a_folder() {
+        let methods = standard_methods();
+        for (i, m) in methods.iter().enumerate() {
+            assert!(
+                m.name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '+'),
+                "{}",
+                m.name
+            );
+            assert!(methods[..i].iter().all(|o| o.name != m.name));
+        }
+    }
+
+    #[test]
+    fn only_perceptual_needs_a_model_and_gets_it() {
+        let methods = standard_methods();
+        let needing: Vec<&str> = methods
+            .iter()
+            .filter(|m| m.needs_motion_model())
+            .map(|m| m.name.as_str())
+            .collect();
+        assert_eq!(needing, ["perceptual"]);
+        let p = methods.iter().find(|m| m.name == "perceptual").unwrap();
+        assert_eq!(
+            p.flags_with_model("models/glass/motion.json"),
+            ["--controllers", "perceptual:model=models/glass/motion.json"]
+        );
+    }
+}
