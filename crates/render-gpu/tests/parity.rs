@@ -514,7 +514,10 @@ fn moving_world() {
 
 #[test]
 fn teapot() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/teapot.obj");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/meshes/teapot.obj"
+    );
     let transform = Transform {
         translate: Vec3::new(0.3, 0.0, -4.5),
         scale: Vec3::splat(0.5),
