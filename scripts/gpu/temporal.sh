@@ -20,7 +20,7 @@
 # Small results (summaries, tables, frames.csv, jod.json, the still view's figures) are packed
 # into OUT/results.tar.gz after every stage, so a run cut short still returns what it did.
 #
-# On the device machine, after the recipe of ../shared/gpu/README.md (the Vulkan loader
+# On the device machine, set up as docs/gpu.md says (the Vulkan loader's Debian packages
 # unpacked from .gl/, the release binary in .gpu-bin/), with ColorVideoVDP's wheels in .whl/
 # (here: python -m pip download --no-deps --only-binary=:all: --python-version 3.12
 #  --implementation cp --platform any -d .whl cvvdp==0.5.7 ffmpeg-python==0.2.0 future;

@@ -1,4 +1,4 @@
-//! BVH throughput on the Stanford bunny (`../shared/meshes/`), the view of issue 6: build
+//! BVH throughput on the Stanford bunny (`assets/meshes/`), the view of issue 6: build
 //! time, and closest-hit and any-hit rays per second for one primary ray per pixel of a
 //! 480x270 image and one cosine-weighted bounce ray from each primary hit, on one thread.
 //! `cargo bench -p steadyray-accel`; criterion reports rays/s as elements/s. Without the
@@ -18,7 +18,7 @@ const WIDTH: u32 = 480;
 const HEIGHT: u32 = 270;
 
 fn bunny_path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/stanford-bunny.obj")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/stanford-bunny.obj")
 }
 
 /// A ray as (origin, direction).

@@ -1,4 +1,4 @@
-//! A run's figures as the viewer saw it (`spec/display.md`): frames shown per second,
+//! A run's figures as the viewer saw it (`docs/display.md`): frames shown per second,
 //! repeated refreshes, pacing and latency.
 
 use crate::stats::{mean, quantile, std_dev};

@@ -1,4 +1,4 @@
-//! What the viewer sees of a real-time renderer's frames (`spec/display.md`): a display model
+//! What the viewer sees of a real-time renderer's frames (`docs/display.md`): a display model
 //! (refresh rate, vsync on or off, variable refresh within a range, double buffering, the
 //! measured hand-over cost), the real clock that advances display time by it, the run's
 //! figures (frames shown per second, repeated refreshes, pacing, latency) and the one viewing

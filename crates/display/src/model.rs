@@ -1,4 +1,4 @@
-//! The display model (`spec/display.md`): double-buffered presentation of frames whose render
+//! The display model (`docs/display.md`): double-buffered presentation of frames whose render
 //! and hand-over times were measured. Times in, display times out; nothing here renders or
 //! waits, so a run on a fake clock gives the same answers as one on a real renderer.
 //!

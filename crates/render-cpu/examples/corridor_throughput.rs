@@ -1,5 +1,5 @@
 //! Measures the CPU renderer's throughput on a corridor-like scene (the test suite's copy of
-//! `spec/corridor.md`), at 640×360, S = 4, R = 8, for a few camera yaws.
+//! `docs/corridor.md`), at 640×360, S = 4, R = 8, for a few camera yaws.
 //!
 //! `cargo run --release -p steadyray-render-cpu --example corridor_throughput [threads]`
 

@@ -94,8 +94,8 @@ impl AdapterSummary {
 }
 
 /// The backends searched unless `WGPU_BACKEND` names others: Vulkan, Metal, DX12. wgpu's GL
-/// backend cannot run these compute shaders on NVIDIA's driver (`shared/gpu/README.md`),
-/// and probing it only prints EGL noise on machines without a display.
+/// backend cannot run these compute shaders on NVIDIA's driver (it gets a GL 3.3 context
+/// there, `docs/gpu.md`), and probing it only prints EGL noise on machines without a display.
 pub(crate) const DEFAULT_BACKENDS: wgpu::Backends = wgpu::Backends::PRIMARY;
 
 /// A wgpu instance over [`DEFAULT_BACKENDS`], or the backends `WGPU_BACKEND` names.

@@ -516,12 +516,8 @@ fn moving_world() {
 fn teapot() {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/meshes/teapot.obj"
+        "/../../assets/meshes/teapot.obj"
     );
-    if !std::path::Path::new(path).exists() {
-        eprintln!("SKIPPED: {path} not found");
-        return;
-    }
     let transform = Transform {
         translate: Vec3::new(0.3, 0.0, -4.5),
         scale: Vec3::splat(0.5),
@@ -543,12 +539,8 @@ fn teapot() {
 fn bunny_in_the_cornell_box() {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/meshes/stanford-bunny.obj"
+        "/../../assets/meshes/stanford-bunny.obj"
     );
-    if !std::path::Path::new(path).exists() {
-        eprintln!("SKIPPED: {path} not found");
-        return;
-    }
     let mut scene = builtin("cornell").unwrap();
     let white = scene
         .materials

@@ -24,7 +24,7 @@ fn bunny() -> &'static (Vec<[Vec3; 3]>, Bvh) {
     static BUNNY: OnceLock<(Vec<[Vec3; 3]>, Bvh)> = OnceLock::new();
     BUNNY.get_or_init(|| {
         let path =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/stanford-bunny.obj");
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/stanford-bunny.obj");
         let mesh = import_mesh(&path, &Transform::default()).unwrap().mesh;
         let corners: Vec<[Vec3; 3]> = (0..mesh.triangles.len())
             .map(|i| mesh.triangle(i))

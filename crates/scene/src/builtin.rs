@@ -5,7 +5,7 @@ use crate::Scene;
 use crate::error::{SceneError, SceneErrorKind};
 use crate::format::parse_scene;
 
-/// The scene used when none is named: the paper's benchmark corridor (`spec/corridor.md`).
+/// The scene used when none is named: the paper's benchmark corridor (`docs/corridor.md`).
 pub const DEFAULT_SCENE: &str = "corridor";
 
 /// A built-in scene: its name, a one-line description (for `steadyray scenes`) and its TOML.
@@ -20,7 +20,7 @@ const BUILTINS: [BuiltinScene; 4] = [
     BuiltinScene {
         name: "corridor",
         description: "the paper's benchmark: a mirror-lined corridor with coloured, glass and \
-                      chrome spheres, camera sweeping a full turn (spec/corridor.md)",
+                      chrome spheres, camera sweeping a full turn (docs/corridor.md)",
         toml: include_str!("../builtin/corridor.toml"),
     },
     BuiltinScene {

@@ -1,4 +1,4 @@
-//! The pinhole camera and the pixel-to-ray convention of `spec/corridor.md`.
+//! The pinhole camera and the pixel-to-ray convention of `docs/corridor.md`.
 
 use glam::Vec3;
 
@@ -102,7 +102,7 @@ impl Camera {
 
 impl CameraFrame {
     /// The unit direction of the eye ray through pixel (px, py) at sub-pixel offset (u, v)
-    /// in [0, 1)², py = 0 being the top row (`spec/corridor.md`).
+    /// in [0, 1)², py = 0 being the top row (`docs/corridor.md`).
     pub fn ray_dir(&self, px: u32, py: u32, u: f32, v: f32, width: u32, height: u32) -> Vec3 {
         let sx = (2.0 * (px as f32 + u) / width as f32 - 1.0) * self.half_width;
         let sy = (1.0 - 2.0 * (py as f32 + v) / height as f32) * self.half_height;

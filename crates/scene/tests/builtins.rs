@@ -1,5 +1,5 @@
 //! The built-in scenes: they load, they round-trip through `scene_to_toml` bit for bit, and
-//! the corridor is exactly `spec/corridor.md`.
+//! the corridor is exactly `docs/corridor.md`.
 
 use steadyray_scene::*;
 

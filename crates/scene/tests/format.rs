@@ -64,7 +64,7 @@ fn camera_forms() {
         .unwrap()
         .camera
     };
-    // Yaw turns left from -z: yaw 90 looks along -x (spec/corridor.md).
+    // Yaw turns left from -z: yaw 90 looks along -x (docs/corridor.md).
     let c = cam("yaw_deg = 90");
     assert!((c.forward - Vec3::NEG_X).length() < 1e-6, "{}", c.forward);
     let c = cam("yaw_deg = 0\npitch_deg = 30");
@@ -170,7 +170,7 @@ fn the_documented_example_parses() {
     let start = doc.find("```toml\n").unwrap() + "```toml\n".len();
     let end = start + doc[start..].find("```").unwrap();
     let example = doc[start..end].replace("meshes/teapot.obj", "teapot.obj");
-    let meshes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes");
+    let meshes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes");
     let s = parse_scene(&example, "example.toml", Some(&meshes)).unwrap();
     assert_eq!(s.name, "example");
     assert_eq!(s.objects.len(), 4);

@@ -1,13 +1,14 @@
-//! OBJ import: the shared test meshes, transforms, malformed files, meshes in scene files.
+//! OBJ import: the repository's test meshes (`assets/meshes/`), transforms, malformed files,
+//! meshes in scene files.
 
 use std::path::{Path, PathBuf};
 use steadyray_scene::Transform;
 use steadyray_scene::mesh_import::{MeshImportError, MeshProblem, import_mesh};
 use steadyray_scene::*;
 
-fn shared_mesh(name: &str) -> PathBuf {
+fn repo_mesh(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/meshes")
+        .join("../../assets/meshes")
         .join(name)
 }
 
@@ -21,7 +22,7 @@ fn temp_dir(test: &str) -> PathBuf {
 
 #[test]
 fn teapot_has_all_its_triangles() {
-    let m = import_mesh(&shared_mesh("teapot.obj"), &Transform::default()).unwrap();
+    let m = import_mesh(&repo_mesh("teapot.obj"), &Transform::default()).unwrap();
     assert_eq!(m.mesh.triangles.len() + m.degenerate_dropped, 6320);
     assert_eq!(
         m.degenerate_dropped, 0,
@@ -32,7 +33,7 @@ fn teapot_has_all_its_triangles() {
 
 #[test]
 fn bunny_has_all_its_triangles() {
-    let m = import_mesh(&shared_mesh("stanford-bunny.obj"), &Transform::default()).unwrap();
+    let m = import_mesh(&repo_mesh("stanford-bunny.obj"), &Transform::default()).unwrap();
     assert_eq!(m.mesh.triangles.len() + m.degenerate_dropped, 69451);
     assert_eq!(m.degenerate_dropped, 0);
     // Vertices no face uses are not imported.
@@ -41,13 +42,13 @@ fn bunny_has_all_its_triangles() {
 
 #[test]
 fn transform_is_applied() {
-    let plain = import_mesh(&shared_mesh("teapot.obj"), &Transform::default()).unwrap();
+    let plain = import_mesh(&repo_mesh("teapot.obj"), &Transform::default()).unwrap();
     let t = Transform {
         translate: Vec3::new(1.0, 2.0, 3.0),
         scale: Vec3::new(0.5, 2.0, 0.5),
         rotate_y_deg: 180.0,
     };
-    let moved = import_mesh(&shared_mesh("teapot.obj"), &t).unwrap();
+    let moved = import_mesh(&repo_mesh("teapot.obj"), &t).unwrap();
     assert_eq!(moved.mesh.triangles, plain.mesh.triangles);
     for (p, q) in plain.mesh.positions.iter().zip(&moved.mesh.positions) {
         let expect = Vec3::new(-0.5 * p.x + 1.0, 2.0 * p.y + 2.0, -0.5 * p.z + 3.0);
@@ -62,7 +63,7 @@ fn transform_is_applied() {
 fn scene_file_mesh_paths_are_relative_to_the_file() {
     let dir = temp_dir("relative");
     std::fs::create_dir_all(dir.join("meshes")).unwrap();
-    std::fs::copy(shared_mesh("teapot.obj"), dir.join("meshes/pot.obj")).unwrap();
+    std::fs::copy(repo_mesh("teapot.obj"), dir.join("meshes/pot.obj")).unwrap();
     let scene = "[camera]\neye = [0, 1, 5]\ntarget = [0, 1, 0]\n\
                  [[materials]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = 0.8\n\
                  [[shapes]]\nname = \"pot\"\ntype = \"mesh\"\nmaterial = \"white\"\n\

@@ -112,7 +112,7 @@ pub fn assert_close(got: Vec3, want: Vec3, tol: f32, what: &str) {
     );
 }
 
-/// A scene like the benchmark corridor of `spec/corridor.md` (two mirror walls, a checker
+/// A scene like the benchmark corridor of `docs/corridor.md` (two mirror walls, a checker
 /// floor, diffuse, glass and chrome spheres, three lights).
 pub fn corridor() -> Scene {
     let grey = |g: f32| Vec3::splat(g);

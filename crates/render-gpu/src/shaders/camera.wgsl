@@ -1,5 +1,5 @@
 // Eye-ray directions of the pinhole camera, shared by the integrator and the ray caster:
-// CameraFrame::ray_dir of spec/corridor.md, operation for operation, so that both backends
+// CameraFrame::ray_dir of docs/corridor.md, operation for operation, so that both backends
 // round alike (exactly, where the driver does not fuse multiply-adds).
 
 // glam's Vec3::normalize: v * (1 / sqrt(dot(v, v))), written out so both backends round alike.

@@ -98,7 +98,7 @@ struct SampleRange {
     pad1: u32,
 }
 
-// A camera frame (GpuCameraView; CameraFrame of spec/corridor.md) for the temporal history's
+// A camera frame (GpuCameraView; CameraFrame of docs/corridor.md) for the temporal history's
 // size.
 struct CameraView {
     eye: vec3<f32>,
@@ -249,7 +249,7 @@ struct Light {
 }
 
 // The ray caster's settings (GpuCastParams): the camera frame of the primary rays
-// (CameraFrame of spec/corridor.md), the image size in pixels and CAST_TILE tiles, and the
+// (CameraFrame of docs/corridor.md), the image size in pixels and CAST_TILE tiles, and the
 // number of rays of a cast_rays dispatch.
 struct CastParams {
     eye: vec3<f32>,
