@@ -15,7 +15,8 @@ use std::collections::BTreeMap;
 use std::process::ExitCode;
 use steadyray_control::noise::{NoiseFit, fit_profile};
 
-/// The frame times (ms) of one run, and the mean time between frames beyond them (ms).
+/// The frame times (ms) of one run, and the mean time between frames beyond them (ms): the
+/// render call's wall time beyond Tp, the nearest the csv comes to it.
 struct Run {
     tp_ms: Vec<f64>,
     gap_ms: f64,

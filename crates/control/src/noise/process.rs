@@ -50,9 +50,4 @@ impl NoiseProcess {
         };
         (self.spell + p.jitter_sigma * jitter + spike).exp()
     }
-
-    /// ln of the machine's speed factor now (the spell alone).
-    pub fn spell(&self) -> f64 {
-        self.spell
-    }
 }
