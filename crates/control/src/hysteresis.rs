@@ -179,12 +179,15 @@ impl Hysteresis {
         }
         let settled = self.since_change >= p.min_interval;
         let overload = tp > band.tmax_ms();
-        let factor = if overload && self.over_run == 1 && before.is_some() {
+        let factor = if overload
+            && self.over_run == 1
+            && let Some(before) = before
+        {
             // One frame over Tmax after frames under the soft limit: on a real machine more
             // often a spike than a change of load. Cut only as far as lands the next frame at
             // the target should it have been one (none when the frame before was already
             // there); a second frame over confirms it and cuts in full.
-            let spike_safe = target / before.unwrap_or(tp);
+            let spike_safe = target / before;
             if spike_safe >= 1.0 {
                 return None;
             }

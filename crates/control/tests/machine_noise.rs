@@ -112,30 +112,35 @@ fn hysteresis_holds_the_corridor_under_each_recorded_noise() {
     }
 }
 
-/// One slow frame (1.2 to 1.6 times its time, the spikes the recorded machines make) on a
-/// steady view: `predictive` may trim the quality, but the next frame, back at normal
-/// speed, still lands in the band; a cut on one frame's word that drops the next frame under
-/// the band was a miss and, with the raise that follows, a reversal.
+/// One slow frame (1.25 to 1.6 times its time, the spikes the recorded machines make) on a
+/// steady view: `predictive` and `hysteresis` may trim the quality, but the next frame, back
+/// at normal speed, still lands in the band; a cut on one frame's word that drops the next
+/// frame under the band was a miss and, with the raise that follows, a reversal.
 #[test]
 fn a_spike_alone_does_not_cut_under_the_band() {
-    for factor in [1.2, 1.3, 1.45, 1.6] {
+    for (name, factor) in ["predictive", "hysteresis"]
+        .into_iter()
+        .flat_map(|name| [1.25, 1.3, 1.45, 1.6].map(|f| (name, f)))
+    {
         let mut model =
             RendererModel::corridor(FRAMES).with_profile(LoadProfile::Constant(corridor_load(0.6)));
         model.spike_factor = factor;
         model.spike_frames = vec![100, 160, 220];
         let setup = Setup::new(BAND, Bounds::default(), top()).unwrap();
-        let mut c = from_name("predictive", setup, "").unwrap();
+        let mut c = from_name(name, setup, "").unwrap();
         let records = run(c.as_mut(), &model, 260);
         for &f in &model.spike_frames {
             let (spike, next) = (&records[f], &records[f + 1]);
-            assert!(spike.tp_ms > BAND.tmax_ms(), "factor {factor}: {spike:?}");
+            assert!(spike.tp_ms > BAND.tmax_ms(), "{name} {factor}: {spike:?}");
             assert!(
                 BAND.contains(next.tp_ms),
-                "factor {factor}, frame {f}: {spike:?} then {next:?}"
+                "{name} {factor}, frame {f}: {spike:?} then {next:?}"
             );
         }
         let s = summarize(&records[50..], BAND, top(), Some(&[]));
-        assert!(s.reversals_per_100 <= 1.0, "factor {factor}: {s:?}");
+        // `hysteresis` trims on the spike and raises back after three frames with headroom.
+        let reversals = if name == "predictive" { 1.0 } else { 3.0 };
+        assert!(s.reversals_per_100 <= reversals, "{name} {factor}: {s:?}");
     }
 }
 
