@@ -13,6 +13,11 @@
 //! - Raise: after `up_after` frames in a row below Tmin + `raise_below`·(Tmax − Tmin), by
 //!   target / mean(Tp) but at most 1 + `max_up` (no limit when their mean is under Tmin:
 //!   frames out of the band are as wrong as frames over it).
+//! - Spike: a first frame over Tmax after frames under the soft limit cuts no further than
+//!   would land the frame before it at the target (nothing when that frame was at or under
+//!   it): on a real machine one slow frame is more often a spike than a change of load, and
+//!   a full cut on its word lands the next frame under the band. A second frame over
+//!   confirms the change and cuts in full.
 //! - Hitch: a frame over Tmax and more than `hitch_ratio` times the previous frame is held
 //!   (no change) unless the next frame confirms it, so a one-frame spike costs no quality.
 
@@ -156,7 +161,7 @@ impl Hysteresis {
     }
 
     /// The quality change this frame calls for, if any.
-    fn decide(&mut self, tp: f64) -> Option<Quality> {
+    fn decide(&mut self, tp: f64, before: Option<f64>) -> Option<Quality> {
         let band = self.setup.band;
         let p = &self.params;
         let target = band.at(p.target);
@@ -173,7 +178,21 @@ impl Hysteresis {
             self.headroom_sum = 0.0;
         }
         let settled = self.since_change >= p.min_interval;
-        let factor = if tp > band.tmax_ms() || (self.over_run >= p.cut_after && settled) {
+        let overload = tp > band.tmax_ms();
+        let factor = if overload
+            && self.over_run == 1
+            && let Some(before) = before
+        {
+            // One frame over Tmax after frames under the soft limit: on a real machine more
+            // often a spike than a change of load. Cut only as far as lands the next frame at
+            // the target should it have been one (none when the frame before was already
+            // there); a second frame over confirms it and cuts in full.
+            let spike_safe = target / before;
+            if spike_safe >= 1.0 {
+                return None;
+            }
+            (target / tp).max(spike_safe).min(0.97)
+        } else if overload || (self.over_run >= p.cut_after && settled) {
             (target / tp).min(0.97)
         } else if self.headroom_run >= p.up_after && settled {
             let mean = self.headroom_sum / f64::from(self.headroom_run);
@@ -245,9 +264,9 @@ impl Controller for Hysteresis {
             return Ok(self.quality);
         }
         self.held = false;
-        self.last_tp = Some(tp);
+        let before = self.last_tp.replace(tp);
         self.since_change = self.since_change.saturating_add(1);
-        if let Some(next) = self.decide(tp) {
+        if let Some(next) = self.decide(tp, before) {
             self.quality = next;
             self.since_change = 0;
             self.over_run = 0;

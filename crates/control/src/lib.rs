@@ -33,12 +33,15 @@
 //!   raises after `up_after`=3 frames below Tmin + `raise_below`=0.3 of the band, by at most
 //!   `max_up`=30 % of nominal work; `min_interval`=3 frames between changes (overloads
 //!   excepted); a frame over Tmax and `hitch_ratio`=3 times the previous one is held unless
-//!   the next frame confirms it. `target`=0.4 (below the centre: headroom for rising loads);
+//!   the next frame confirms it, and a first frame over Tmax after frames under the soft
+//!   limit cuts no further than would land the frame before it at the target (a spike's
+//!   cut). `target`=0.4 (below the centre: headroom for rising loads);
 //!   `order`=depth,scale,spp.
 //! - `predictive` ([`Predictive`]): fits Tp ≈ fixed_ms + ms_per_ray · rays online
 //!   ([`cost_model`]: exponential forgetting `forgetting`=0.95, outliers beyond
 //!   `outlier_k`=4 robust deviations set aside, `confirm`=2 outliers on one side confirm a
-//!   real cost change), predicts each candidate's rays from the last frame's rays per depth
+//!   real cost change; one outlier over Tmax cuts no lower than the unsurprised target, as a
+//!   spike would need), predicts each candidate's rays from the last frame's rays per depth
 //!   ([`ray_model`]), extrapolates the load's trend (`trend`=0.5), and keeps the quality while
 //!   the prediction lies inside the inner band (`deadband`=0.2 of the band from each side,
 //!   narrowed so that 2 measured noise deviations stay inside the band);
@@ -68,7 +71,9 @@
 //! # Testing without a GPU
 //!
 //! [`simulate`] is a renderer on a fake clock (cost model, corridor-shaped load, noise,
-//! spikes, a 1 ms timer); [`metrics`] computes the benchmark's figures from any run.
+//! spikes, a 1 ms timer), which can replay a real machine's recorded timing noise
+//! ([`noise`]: jitter, spikes and spells, fitted from fixed-quality runs); [`metrics`]
+//! computes the benchmark's figures from any run.
 
 pub mod band;
 pub mod controller;
@@ -79,6 +84,7 @@ pub mod hysteresis;
 pub mod ladder;
 pub mod metrics;
 pub mod motion_model;
+pub mod noise;
 pub mod perceptual;
 pub mod predictive;
 pub mod quality;
@@ -95,6 +101,7 @@ pub use hysteresis::{Hysteresis, HysteresisParams};
 pub use ladder::{Ladder, LadderPoint, pareto_front};
 pub use metrics::{FrameRecord, RunSummary, best_fixed, summarize};
 pub use motion_model::{Metric, MotionModel};
+pub use noise::{NoiseProcess, NoiseProfile, fit_profile};
 pub use perceptual::{Perceptual, PerceptualParams, Prospect};
 pub use predictive::{Aim, Predictive, PredictiveParams};
 pub use quality::{Bounds, Knob, KnobOrder, Quality};

@@ -5,11 +5,13 @@
 //! 1. The [`CostModel`] (Tp ≈ fixed_ms + ms_per_ray · rays, fitted online, robust to
 //!    spikes) takes the frame. A frame it sets aside as an outlier is not fitted: a frame
 //!    that took [`HITCH_RATIO`] times its prediction or more is a hitch and changes nothing;
-//!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once with
-//!    predictions scaled by how much slower it ran, a cut that keeps R (one slow frame is
-//!    often the machine's; vanished reflections are the most visible cut and the slowest to
-//!    come back), or none when under that scaling not even the lowest such quality would
-//!    fit (no cut can help); a second outlier on the same side
+//!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once in
+//!    proportion to the evidence of one frame: no lower than the target without the
+//!    surprise, so that the next frame lands in the band should it have been a spike (on a
+//!    real machine one slow frame is far more often a spike than a change of cost), a cut
+//!    that keeps R (vanished reflections are the most visible cut and the slowest to come
+//!    back), or none when under that scaling not even the lowest such quality would fit (no
+//!    cut can help); a second outlier on the same side
 //!    confirms a real change of cost and the model refits at once, as do three fitted frames
 //!    in a row well off their prediction on one side (a cost drifting a little each frame).
 //! 2. The [`RayModel`] of the frame gives the rays any candidate quality would trace. The
@@ -59,6 +61,11 @@ pub const HITCH_RATIO: f64 = 3.0;
 /// Frames in a row measured above the inner band that `measured_cut` takes for a drift
 /// (fewer are too often noise, or a coarse timer's rounding).
 pub const DRIFT_FRAMES: u32 = 3;
+/// The most frames in a row above the inner band a drift may need on a noisy machine.
+pub const MAX_DRIFT_FRAMES: u32 = 8;
+/// A drift needs so many frames above the inner band that the measured noise alone puts a
+/// frame planned at the target above it that many times in a row with at most this chance.
+pub const DRIFT_CHANCE: f64 = 1e-3;
 /// Fitted frames needed before the aim follows the measured noise.
 pub const MIN_NOISE_FRAMES: usize = 8;
 /// Planned times scored across the band by [`Predictive::aim`].
@@ -90,7 +97,8 @@ pub struct PredictiveParams {
     pub max_raise: f64,
     /// `trend`: weight of the newest growth in the load trend, 0 to disable. Default 0.5.
     pub trend: f64,
-    /// `measured_cut`: [`DRIFT_FRAMES`] frames in a row measured above the inner band trigger
+    /// `measured_cut`: [`DRIFT_FRAMES`] frames in a row (more on a noisy machine, see
+    /// [`Predictive::drift_frames`]) measured above the inner band trigger
     /// a cut even when the model still predicts the quality fits (the model lags a cost that
     /// drifts with the view). Without it only frames over Tmax do. Default true.
     pub measured_cut: bool,
@@ -202,6 +210,10 @@ pub struct Predictive {
     /// How much slower than predicted the last frame ran, when the cost model set it aside
     /// as an overload (1 otherwise): scales the predictions of the decision it triggers.
     surprise: f64,
+    /// Whether that surprise rests on one frame alone (an unconfirmed overload): the cut
+    /// then goes only as far as keeps the next frame in the band should the frame have
+    /// been a spike ([`Predictive::cut_target_ms`]).
+    one_frame: bool,
     /// Frames in a row measured above the inner band at the current quality.
     above_run: u32,
     /// Where on the ladder the current quality lies (see [`Predictive::ladder_quality`]);
@@ -222,6 +234,7 @@ impl Predictive {
             load: None,
             trend: 0.0,
             surprise: 1.0,
+            one_frame: false,
             above_run: 0,
             ladder_pos: None,
         })
@@ -269,7 +282,8 @@ impl Predictive {
     /// the inner band `deadband` in from each side of the band. Then each planned time t on a
     /// grid over the band is scored by how many recent relative prediction errors r keep
     /// t·(1 + r) inside the band: the target is the middle of the best-scoring times, and the
-    /// inner band spans the times scoring within [`KEEP_SLACK`] of the best (inside the
+    /// inner band spans the times scoring within [`KEEP_SLACK`] of the best, or within the
+    /// counting error of the best score where that is larger (inside the
     /// deadband's limits, and never narrower than [`MIN_INNER`] of the band around the target).
     /// Real frame-time noise is one-sided (other work only makes frames slower), so this aims
     /// below the centre exactly as far as the noise asks.
@@ -302,7 +316,13 @@ impl Predictive {
             })
             .collect();
         let best = scores.iter().copied().max().unwrap_or(0);
-        let keep = best - (KEEP_SLACK * best as f64).floor() as usize;
+        // Scores within the counting error of the best (one binomial standard deviation) are
+        // as good as the best: on a noisy machine the score curve is flat and a few dozen
+        // errors cannot tell its points apart, and an inner band cut to the best few points
+        // moved the quality back and forth on noise.
+        let n = errors.len() as f64;
+        let counting = (best as f64 * (n - best as f64) / n).max(0.0).sqrt().ceil();
+        let keep = best.saturating_sub((KEEP_SLACK * best as f64).floor().max(counting) as usize);
         let span = |at_least: usize| {
             let first = scores.iter().position(|&s| s >= at_least).unwrap_or(0);
             let last = scores.iter().rposition(|&s| s >= at_least).unwrap_or(0);
@@ -334,7 +354,11 @@ impl Predictive {
                 .flatten();
             return (trade.unwrap_or(self.quality), None);
         }
-        let target = aim.target_ms;
+        let target = if raising {
+            aim.target_ms
+        } else {
+            self.cut_target_ms(&aim)
+        };
         let ray_cap = if raising {
             p.max_raise * load.rays(&self.quality)
         } else {
@@ -349,6 +373,56 @@ impl Predictive {
                 (self.ladder_quality(ladder, u), Some(u))
             }
             None => (self.best_fitting(load, fits, raising), None),
+        }
+    }
+
+    /// The time a cut aims for (predictions scaled by the surprise). Normally the target. On
+    /// one unconfirmed overload the target times the surprise: the cut goes no lower than the
+    /// target without it, so the next frame lands at the target should the slow frame have
+    /// been a spike, and the quality stays where the unsurprised prediction still fits. One
+    /// slow frame on a real machine's noise is far more often a spike than a change of cost:
+    /// a full cut on its word landed the next frame under the band (17.5 ms planned under a
+    /// surprise of 1.4 is 12.5 ms), and the raise after it was a reversal. A lasting slowness
+    /// is confirmed by the next frame (the cost model refits at its second outlier, or three
+    /// frames above the inner band make a drift) and cut in full then.
+    fn cut_target_ms(&self, aim: &Aim) -> f64 {
+        if self.one_frame {
+            aim.target_ms * self.surprise
+        } else {
+            aim.target_ms
+        }
+    }
+
+    /// Frames in a row measured above the inner band that make a drift (`measured_cut`):
+    /// [`DRIFT_FRAMES`], or more where the recent prediction errors' scatter around their
+    /// median lifts a frame planned at the target above the inner band often (a share p of
+    /// them): the fewest n with
+    /// p^n ≤ [`DRIFT_CHANCE`], at most [`MAX_DRIFT_FRAMES`]. On a machine whose frames
+    /// scatter by 10 % or more, three frames above the inner band happen by chance every
+    /// few dozen frames, and each such cut and the raise after it was a reversal.
+    fn drift_frames(&self) -> u32 {
+        let aim = self.aim();
+        let mut errors: Vec<f64> = self.cost.recent_errors().collect();
+        if errors.len() < MIN_NOISE_FRAMES {
+            return DRIFT_FRAMES;
+        }
+        // The scatter around the errors' median: a drift's errors all lean one way, which is
+        // the drift to answer, not noise to wait out.
+        errors.sort_by(f64::total_cmp);
+        let median = errors[errors.len() / 2];
+        let above = errors
+            .iter()
+            .filter(|&&r| aim.target_ms * (1.0 + r - median) > aim.high_ms)
+            .count();
+        if above == 0 {
+            return DRIFT_FRAMES;
+        }
+        let share = above as f64 / errors.len() as f64;
+        let needed = (DRIFT_CHANCE.ln() / share.ln()).ceil();
+        if needed.is_finite() {
+            (needed as u32).clamp(DRIFT_FRAMES, MAX_DRIFT_FRAMES)
+        } else {
+            MAX_DRIFT_FRAMES
         }
     }
 
@@ -614,6 +688,7 @@ impl Controller for Predictive {
         let rays = report.total_rays() as f64;
         let expected = self.cost.predict_ms(rays);
         self.surprise = 1.0;
+        self.one_frame = false;
         let fit = self.cost.observe(rays, report.tp_ms);
         let hitch = expected.is_some_and(|e| report.tp_ms >= HITCH_RATIO * e);
         if fit == Fit::Outlier && (hitch || report.tp_ms <= self.setup.band.tmax_ms()) {
@@ -630,12 +705,13 @@ impl Controller for Predictive {
         } else {
             0
         };
-        let drift = self.params.measured_cut && self.above_run >= DRIFT_FRAMES;
+        let drift = self.params.measured_cut && self.above_run >= self.drift_frames();
         let overload = fit == Fit::Outlier;
         // A model just refitted to the latest frames already explains them.
         let refitted = fit == Fit::Shifted;
         if let Some(e) = expected.filter(|_| !hitch && !refitted && (overload || drift)) {
             self.surprise = (report.tp_ms / e).max(1.0);
+            self.one_frame = !drift;
         }
         self.update_load(report);
         // A surprise under which not even the lowest quality a cut may reach would fit is not
@@ -646,9 +722,10 @@ impl Controller for Predictive {
         if self.surprise > 1.0
             && self
                 .predict_ms(&self.cut_floor())
-                .is_some_and(|t| t > self.aim().target_ms)
+                .is_some_and(|t| t > self.cut_target_ms(&self.aim()))
         {
             self.surprise = 1.0;
+            self.one_frame = false;
         }
         let (quality, ladder_pos) = self.decide();
         if quality != self.quality {
@@ -671,6 +748,7 @@ impl Controller for Predictive {
         self.load = None;
         self.trend = 0.0;
         self.surprise = 1.0;
+        self.one_frame = false;
         self.above_run = 0;
         self.ladder_pos = None;
     }

@@ -5,11 +5,14 @@
 //! the frame's [`Load`]: the fraction of eye rays reaching each depth and the shadow rays per
 //! ray. Noise is multiplicative and Gaussian; spikes (hitches) multiply a frame's time by
 //! `spike_factor`, at random with `spike_prob` or on the frames listed in `spike_frames`.
+//! A recorded machine's noise ([`crate::noise`]: jitter, spikes and spells of slower and
+//! faster speed) multiplies it further when the model carries a [`NoiseProfile`].
 //! Everything random comes from a seeded PCG generator that draws the same numbers every
 //! frame whatever the controller does, so runs are reproducible and comparable.
 
 use crate::controller::Controller;
 use crate::metrics::FrameRecord;
+use crate::noise::{NoiseProcess, NoiseProfile};
 use crate::quality::Quality;
 use crate::report::FrameReport;
 use std::f64::consts::TAU;
@@ -264,6 +267,9 @@ pub struct RendererModel {
     /// The screen speed each frame reports, deg/s, by frame (repeated cyclically; empty: a
     /// still picture, 0).
     pub speed_deg_s: Vec<f64>,
+    /// A recorded machine's noise replayed on top of `noise` and the spikes (`None`: none),
+    /// from its own generator seeded by `seed`, so a model without it draws as before.
+    pub machine_noise: Option<NoiseProfile>,
 }
 
 impl RendererModel {
@@ -283,6 +289,7 @@ impl RendererModel {
             seed: 1,
             profile: LoadProfile::Corridor { frames },
             speed_deg_s: Vec::new(),
+            machine_noise: None,
         }
     }
 
@@ -295,6 +302,14 @@ impl RendererModel {
     pub fn with_speeds(self, speed_deg_s: Vec<f64>) -> Self {
         Self {
             speed_deg_s,
+            ..self
+        }
+    }
+
+    /// The model with a recorded machine's noise (see [`crate::noise`]) replayed on its frames.
+    pub fn with_machine_noise(self, profile: NoiseProfile) -> Self {
+        Self {
+            machine_noise: Some(profile),
             ..self
         }
     }
@@ -373,16 +388,28 @@ pub struct SimRenderer {
     model: RendererModel,
     clock_ms: f64,
     rng: Pcg32,
+    machine: Option<NoiseProcess>,
+    /// When the last frame started on the fake clock, ms.
+    last_start_ms: f64,
 }
+
+/// Mixed into the seed of the machine noise's generator, so it draws apart from the model's.
+const MACHINE_SEED: u64 = 0x6d61_6368_696e_6531;
 
 impl SimRenderer {
     /// A renderer at time 0.
     pub fn new(model: RendererModel) -> Self {
         let rng = Pcg32::new(model.seed);
+        let machine = model
+            .machine_noise
+            .clone()
+            .map(|p| NoiseProcess::new(p, model.seed ^ MACHINE_SEED));
         Self {
             model,
             clock_ms: 0.0,
             rng,
+            machine,
+            last_start_ms: 0.0,
         }
     }
 
@@ -410,8 +437,13 @@ impl SimRenderer {
         let spike_draw = self.rng.unit();
         let gap = self.rng.unit();
         let spike = spike_draw < m.spike_prob || m.spike_frames.contains(&frame);
-        let true_ms = ideal * noise * if spike { m.spike_factor } else { 1.0 };
         let start = self.clock_ms;
+        let machine = self
+            .machine
+            .as_mut()
+            .map_or(1.0, |n| n.factor(start - self.last_start_ms));
+        self.last_start_ms = start;
+        let true_ms = ideal * noise * machine * if spike { m.spike_factor } else { 1.0 };
         let end = start + true_ms;
         let tp_ms = if m.timer_ms > 0.0 {
             ((end / m.timer_ms).floor() - (start / m.timer_ms).floor()) * m.timer_ms

@@ -467,9 +467,11 @@ fn an_r_cut_on_a_shallow_view_is_traded_back_on_a_deep_one() {
 }
 
 /// A pass-sized fixed cost (8 ms), a shallow view whose rays die out before the depth (a
-/// level reached by some rays, the next by none), a slow spell of four frames at 2.8 times
-/// the time, then a deep view (rays bouncing between the mirrors). The spell cuts to the
-/// floor, R = 0 included. Frames at R = 0 once measured no level ratio and carried the last
+/// level reached by some rays, the next by none), a slow spell of sixteen frames at 2.8
+/// times the time, then a deep view (rays bouncing between the mirrors). The spell, which
+/// no quality answers (the fixed cost alone then fills the band), ends cut to the floor, R = 0
+/// included (four frames of it once did; now the first cuts take the scale, in proportion to
+/// the evidence). Frames at R = 0 once measured no level ratio and carried the last
 /// one, read from the two deepest levels alone as 0 (some rays, then none): no level beyond
 /// 0 looked reached, and R stayed 0 on the deep view for good (`predictive +temporal` at one
 /// refresh on the CPU). Now the ratio is read from all measured levels, and each frame counts
@@ -498,7 +500,7 @@ fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
     let mut model = with_fixed_cost(model, &deep, 8.0, 0.6);
     let start = Quality::new(1.0, 5, 1.0);
     model.spike_factor = 2.8;
-    model.spike_frames = vec![30, 31, 32, 33];
+    model.spike_frames = (28..44).collect();
     let records = run(controller("predictive", start).as_mut(), &model, 300);
     let depths: Vec<u32> = records.iter().map(|r| r.quality.depth).collect();
     println!("R per frame: {depths:?}");
