@@ -1,6 +1,7 @@
 //! The controller interface and the constructor that builds one by name.
 
 use crate::band::Band;
+use crate::decision::Decision;
 use crate::error::ConfigError;
 use crate::fixed::Fixed;
 use crate::hysteresis::{Hysteresis, HysteresisParams};
@@ -11,6 +12,7 @@ use crate::report::{FrameReport, ReportError};
 use crate::step::{Step, StepParams};
 use std::fmt;
 use std::str::FromStr;
+use std::time::Duration;
 
 /// A frame-time controller: it sees each frame's report and decides the next frame's quality.
 ///
@@ -29,6 +31,23 @@ pub trait Controller: Send + fmt::Debug {
     /// is refused with an error and changes nothing: quality, history and model stay as they
     /// were, so the run continues exactly as if the frame had not been reported.
     fn observe(&mut self, report: &FrameReport) -> Result<Quality, ReportError>;
+
+    /// The simple case in one call, for an engine that knows only how long its frame took
+    /// and how many pixels it shaded: the frame just rendered at [`Controller::quality`]
+    /// took `frame_time` and shaded `pixels` pixels (after the render scale), each with the
+    /// quality's samples and no bounces ([`FrameReport::from_pixels`]). Returns the next
+    /// quality, as [`Controller::observe`] does.
+    fn frame_done(&mut self, frame_time: Duration, pixels: u64) -> Result<Quality, ReportError> {
+        let report = FrameReport::from_pixels(frame_time, pixels, self.quality());
+        self.observe(&report)
+    }
+
+    /// What the last frame's report made the controller decide, and why (the predicted time,
+    /// the band aimed at, the knobs moved): for an engine's HUD or log. `None` before the
+    /// first frame, and for controllers that explain nothing (`fixed`, `step`, `hysteresis`).
+    fn decision(&self) -> Option<&Decision> {
+        None
+    }
 
     /// Back to the starting quality with an empty history (e.g. between benchmark runs).
     fn reset(&mut self);

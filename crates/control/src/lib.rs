@@ -78,6 +78,7 @@
 pub mod band;
 pub mod controller;
 pub mod cost_model;
+pub mod decision;
 pub mod error;
 pub mod fixed;
 pub mod hysteresis;
@@ -95,6 +96,7 @@ pub mod step;
 
 pub use band::{Band, Position};
 pub use controller::{CONTROLLER_NAMES, Controller, DisplayCosts, Setup, from_name, parse_options};
+pub use decision::{Action, Decision, Reason};
 pub use error::ConfigError;
 pub use fixed::Fixed;
 pub use hysteresis::{Hysteresis, HysteresisParams};

@@ -45,6 +45,7 @@
 
 use crate::band::Band;
 use crate::controller::{Controller, DisplayCosts, Setup, parse_option, within};
+use crate::decision::Decision;
 use crate::error::ConfigError;
 use crate::motion_model::MotionModel;
 use crate::predictive::{Predictive, PredictiveParams};
@@ -390,6 +391,11 @@ impl Controller for Perceptual {
 
     fn target_frame_ms(&self) -> Option<f64> {
         Some(self.target_ms())
+    }
+
+    /// The inner `predictive`'s decision (a new target frame time shows as a new band).
+    fn decision(&self) -> Option<&Decision> {
+        self.inner.decision()
     }
 
     /// Its bands are its model's frame times': a band from outside changes none of them.

@@ -46,6 +46,7 @@
 use crate::band::Band;
 use crate::controller::{Controller, Setup, parse_option, within};
 use crate::cost_model::{CostModel, CostParams, Fit};
+use crate::decision::{Action, Decision, Reason};
 use crate::error::ConfigError;
 use crate::ladder::Ladder;
 use crate::quality::{Knob, KnobOrder, Quality};
@@ -219,6 +220,16 @@ pub struct Predictive {
     /// Where on the ladder the current quality lies (see [`Predictive::ladder_quality`]);
     /// `None` off the ladder (the starting quality) or without one.
     ladder_pos: Option<f64>,
+    /// The last decision, for [`Controller::decision`].
+    decision: Option<Decision>,
+}
+
+/// What [`Predictive::decide`] chose: the next quality, its ladder position when it moved
+/// along a ladder, and why.
+struct Choice {
+    quality: Quality,
+    ladder_pos: Option<f64>,
+    reason: Reason,
 }
 
 impl Predictive {
@@ -237,6 +248,7 @@ impl Predictive {
             one_frame: false,
             above_run: 0,
             ladder_pos: None,
+            decision: None,
         })
     }
 
@@ -340,11 +352,16 @@ impl Predictive {
     }
 
     /// The next quality (and its ladder position when it moved along a ladder): unchanged
-    /// inside the inner band, else the best that fits the target.
-    fn decide(&self) -> (Quality, Option<f64>) {
+    /// inside the inner band, else the best that fits the target; with the reason.
+    fn decide(&self) -> Choice {
         let p = &self.params;
+        let keep = |reason| Choice {
+            quality: self.quality,
+            ladder_pos: None,
+            reason,
+        };
         let (Some(now), Some(load)) = (self.predict_ms(&self.quality), &self.load) else {
-            return (self.quality, None);
+            return keep(Reason::Learning);
         };
         let aim = self.aim();
         let raising = now < aim.low_ms;
@@ -352,8 +369,21 @@ impl Predictive {
             let trade = (p.trades && p.ladder.is_none())
                 .then(|| self.order_trade(load, aim.target_ms))
                 .flatten();
-            return (trade.unwrap_or(self.quality), None);
+            return Choice {
+                quality: trade.unwrap_or(self.quality),
+                ladder_pos: None,
+                reason: Reason::InInnerBand,
+            };
         }
+        let reason = if raising {
+            Reason::UnderInnerBand
+        } else if self.surprise > 1.0 && self.one_frame {
+            Reason::OneSlowFrame
+        } else if self.surprise > 1.0 {
+            Reason::Drift
+        } else {
+            Reason::OverInnerBand
+        };
         let target = if raising {
             aim.target_ms
         } else {
@@ -367,13 +397,67 @@ impl Predictive {
         let fits = |q: &Quality| {
             load.rays(q) <= ray_cap && self.predict_ms(q).is_some_and(|t| t <= target)
         };
-        match &self.params.ladder {
+        let (quality, ladder_pos) = match &self.params.ladder {
             Some(ladder) => {
                 let u = self.best_on_ladder(ladder, fits, raising);
                 (self.ladder_quality(ladder, u), Some(u))
             }
             None => (self.best_fitting(load, fits, raising), None),
+        };
+        Choice {
+            quality,
+            ladder_pos,
+            reason,
         }
+    }
+
+    /// Takes `choice` as the next quality and records the decision (`measured_ms`: the frame
+    /// that prompted it, if one did).
+    fn apply(&mut self, choice: Choice, measured_ms: Option<f64>) -> Quality {
+        let from = self.quality;
+        if choice.quality != from {
+            self.above_run = 0;
+        }
+        self.quality = choice.quality;
+        if choice.ladder_pos.is_some() {
+            self.ladder_pos = choice.ladder_pos;
+        }
+        self.record(choice.reason, from, measured_ms);
+        self.quality
+    }
+
+    /// Records the decision that took the quality from `from` to the current one.
+    fn record(&mut self, reason: Reason, from: Quality, measured_ms: Option<f64>) {
+        let to = self.quality;
+        let action = if to == from {
+            Action::Hold
+        } else {
+            match reason {
+                Reason::InInnerBand => Action::Trade,
+                Reason::UnderInnerBand => Action::Raise,
+                Reason::NewBand => {
+                    if to.at_least(&from) {
+                        Action::Raise
+                    } else {
+                        Action::Cut
+                    }
+                }
+                _ => Action::Cut,
+            }
+        };
+        let aim = self.aim();
+        let band = self.setup.band;
+        self.decision = Some(Decision {
+            action,
+            reason,
+            measured_ms,
+            predicted_ms: self.predict_ms(&to),
+            target_ms: aim.target_ms,
+            inner_ms: [aim.low_ms, aim.high_ms],
+            band_ms: [band.tmin_ms(), band.tmax_ms()],
+            from,
+            to,
+        });
     }
 
     /// The time a cut aims for (predictions scaled by the surprise). Normally the target. On
@@ -524,12 +608,9 @@ impl Predictive {
     pub fn retarget(&mut self, band: Band) -> Quality {
         self.setup.band = band;
         self.above_run = 0;
-        let (quality, ladder_pos) = self.decide();
-        self.quality = quality;
-        if ladder_pos.is_some() {
-            self.ladder_pos = ladder_pos;
-        }
-        self.quality
+        let mut choice = self.decide();
+        choice.reason = Reason::NewBand;
+        self.apply(choice, None)
     }
 
     /// Where the knob order would settle for `target_ms` on the current view, raised from
@@ -695,6 +776,7 @@ impl Controller for Predictive {
             // Set aside by the cost model: a hitch, or the first frame of a change that the
             // band tolerates. Over the band and not a hitch, it is an overload to cut now,
             // not a frame to wait on (below).
+            self.record(Reason::SetAside, self.quality, Some(report.tp_ms));
             return Ok(self.quality);
         }
         // An outlier over Tmax (not a hitch) re-plans at once, and with `measured_cut` so does
@@ -727,15 +809,12 @@ impl Controller for Predictive {
             self.surprise = 1.0;
             self.one_frame = false;
         }
-        let (quality, ladder_pos) = self.decide();
-        if quality != self.quality {
-            self.above_run = 0;
-        }
-        self.quality = quality;
-        if ladder_pos.is_some() {
-            self.ladder_pos = ladder_pos;
-        }
-        Ok(self.quality)
+        let choice = self.decide();
+        Ok(self.apply(choice, Some(report.tp_ms)))
+    }
+
+    fn decision(&self) -> Option<&Decision> {
+        self.decision.as_ref()
     }
 
     fn set_band(&mut self, band: Band) {
@@ -751,6 +830,7 @@ impl Controller for Predictive {
         self.one_frame = false;
         self.above_run = 0;
         self.ladder_pos = None;
+        self.decision = None;
     }
 }
 

@@ -227,6 +227,12 @@ impl Bounds {
         Ok(b)
     }
 
+    /// The bounds of an engine whose one knob is the render scale, from `min_scale` to
+    /// `max_scale`: one sample per pixel, no bounces (a raster engine's dynamic resolution).
+    pub fn scale_only(min_scale: f32, max_scale: f32) -> Result<Self, ConfigError> {
+        Self::new((1.0, 1.0), (0, 0), (min_scale, max_scale))
+    }
+
     /// Checks the bounds (the fields are public, so controllers check again when built).
     pub fn validate(&self) -> Result<(), ConfigError> {
         let bad = |knob, min: f64, max: f64, why| {

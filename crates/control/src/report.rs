@@ -2,6 +2,7 @@
 
 use crate::quality::Quality;
 use serde::{Deserialize, Serialize};
+use std::time::Duration;
 use thiserror::Error;
 
 /// The longest frame time a report may claim, ms (one minute). Longer times are refused as
@@ -56,6 +57,26 @@ pub enum ReportError {
 }
 
 impl FrameReport {
+    /// The report of an engine that counts no rays, only the pixels it shaded (after the
+    /// render scale): a frame of `pixels` pixels at `quality`, which took `frame_time`. Its
+    /// work is `pixels` × S eye samples and nothing deeper, so `predictive` predicts the
+    /// render scale's and S's costs exactly and leaves the depth where it is (a renderer
+    /// that bounces should report its rays per depth instead).
+    pub fn from_pixels(frame_time: Duration, pixels: u64, quality: Quality) -> Self {
+        let samples = (pixels as f64 * f64::from(quality.spp.max(1.0))).round() as u64;
+        let mut rays_per_depth = vec![0; quality.depth as usize + 1];
+        rays_per_depth[0] = samples;
+        Self {
+            tp_ms: frame_time.as_secs_f64() * 1e3,
+            rays_per_depth,
+            shadow_rays: 0,
+            rays_stopped: None,
+            pixels,
+            quality,
+            speed_deg_s: 0.0,
+        }
+    }
+
     /// All rays: every depth and the shadow rays.
     pub fn total_rays(&self) -> u64 {
         self.rays_per_depth.iter().sum::<u64>() + self.shadow_rays

@@ -1,18 +1,17 @@
 //! The engine's frame loop with `steadyray-control` in it: ask the controller for a render
 //! scale, draw at it, tell the controller how long the frame took and how much it drew.
 
-use crate::gpu::{Drawn, Gpu};
+use crate::gpu::Gpu;
 use crate::load::Schedule;
 use crate::timer::TimeSource;
 use anyhow::{Context, Result};
-use steadyray_control::{
-    Band, Bounds, Controller, FrameRecord, FrameReport, Quality, Setup, from_name,
-};
+use std::time::Duration;
+use steadyray_control::{Action, Band, Bounds, Controller, FrameRecord, Setup, from_name};
 
 /// The knobs a raster engine has: one sample, no bounces, a render scale from a quarter of
 /// the window's resolution to all of it.
 pub fn raster_bounds() -> Result<Bounds> {
-    Bounds::new((1.0, 1.0), (0, 0), (0.25, 1.0)).context("the raster bounds are invalid")
+    Bounds::scale_only(0.25, 1.0).context("the raster bounds are invalid")
 }
 
 /// A controller from a spec such as `predictive` or `fixed:scale=0.6`, aiming at `band`,
@@ -33,24 +32,32 @@ pub struct Frame {
     pub level: f64,
     /// Where its time came from.
     pub source: TimeSource,
+    /// What the controller did after it (None for controllers that do not say).
+    pub action: Option<Action>,
 }
 
-/// Draws frame `index` at the controller's scale and reports it; None when the window had
-/// no image to draw on (nothing is reported).
+/// Draws frame `index` at the controller's scale and reports its time and pixels; None when
+/// the window had no image to draw on (nothing is reported). With `log`, each change of
+/// scale is printed with the controller's reason.
 pub fn step(
     gpu: &mut Gpu,
     controller: &mut dyn Controller,
     schedule: &Schedule,
     index: u64,
     time_s: f32,
+    log: bool,
 ) -> Result<Option<Frame>> {
     let quality = controller.quality();
     let Some(drawn) = gpu.frame(quality.scale, schedule.iterations(index), time_s)? else {
         return Ok(None);
     };
     controller
-        .observe(&report(&drawn, quality))
+        .frame_done(Duration::from_secs_f64(drawn.ms / 1e3), drawn.pixels)
         .context("the controller refused the frame's report")?;
+    let decision = controller.decision();
+    if let Some(d) = decision.filter(|d| log && d.action != Action::Hold) {
+        eprintln!("frame {index}: {d}");
+    }
     Ok(Some(Frame {
         record: FrameRecord {
             frame: index as usize,
@@ -60,19 +67,6 @@ pub fn step(
         },
         level: schedule.level(index),
         source: drawn.source,
+        action: decision.map(|d| d.action),
     }))
-}
-
-/// What the controller is told: the frame time and the work done, as pixels shaded (one
-/// sample each, no bounces: the only "rays" a raster pass has).
-fn report(drawn: &Drawn, quality: Quality) -> FrameReport {
-    FrameReport {
-        tp_ms: drawn.ms,
-        rays_per_depth: vec![drawn.pixels],
-        shadow_rays: 0,
-        rays_stopped: None,
-        pixels: drawn.pixels,
-        quality,
-        speed_deg_s: 0.0,
-    }
 }

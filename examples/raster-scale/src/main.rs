@@ -57,6 +57,9 @@ struct Args {
     /// Window height, pixels.
     #[arg(long, default_value_t = 360)]
     height: u32,
+    /// Print each change of scale with the controller's reason (its decision) to stderr.
+    #[arg(long)]
+    log_decisions: bool,
 }
 
 impl Args {
@@ -196,6 +199,7 @@ impl App {
             &running.schedule,
             index,
             time_s,
+            self.args.log_decisions,
         )? {
             self.frames.push(frame);
         }

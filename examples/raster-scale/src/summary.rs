@@ -4,7 +4,7 @@
 use crate::engine::Frame;
 use crate::load::LEVELS;
 use serde::Serialize;
-use steadyray_control::{Band, FrameRecord, Quality, metrics};
+use steadyray_control::{Action, Band, FrameRecord, Quality, metrics};
 
 /// Frames at the start of each load phase left out of the per-level scale (the controller's
 /// reaction to the step).
@@ -21,6 +21,33 @@ pub struct LevelScale {
     pub mean_scale: f64,
     /// Their share in the band, %.
     pub in_band_pct: f64,
+}
+
+/// How often the controller did what.
+#[derive(Debug, Default, Serialize)]
+pub struct Actions {
+    /// Cuts of the scale.
+    pub cuts: usize,
+    /// Raises.
+    pub raises: usize,
+    /// Trades of one knob for another at the same cost (holds, every other frame, are not
+    /// counted).
+    pub trades: usize,
+}
+
+impl Actions {
+    fn count(frames: &[Frame]) -> Self {
+        let mut a = Self::default();
+        for f in frames {
+            match f.action {
+                Some(Action::Cut) => a.cuts += 1,
+                Some(Action::Raise) => a.raises += 1,
+                Some(Action::Trade) => a.trades += 1,
+                Some(Action::Hold) | None => {}
+            }
+        }
+        a
+    }
 }
 
 /// What `--frames N` prints.
@@ -50,6 +77,8 @@ pub struct Summary {
     pub reversals_per_100: f64,
     /// Mean render scale.
     pub mean_scale: f64,
+    /// The controller's cuts, raises and trades (from its decisions; 0 where it gives none).
+    pub actions: Actions,
     /// The scale at each load level.
     pub by_load: Vec<LevelScale>,
 }
@@ -114,6 +143,7 @@ pub fn summarize(
         tp_p95: s.tp_p95,
         reversals_per_100: s.reversals_per_100,
         mean_scale: s.mean_scale,
+        actions: Actions::count(frames),
         by_load,
     }
 }
