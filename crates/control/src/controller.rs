@@ -5,6 +5,8 @@ use crate::decision::Decision;
 use crate::error::ConfigError;
 use crate::fixed::Fixed;
 use crate::hysteresis::{Hysteresis, HysteresisParams};
+use crate::ladder::Ladder;
+use crate::motion_model::MotionModel;
 use crate::perceptual::{Perceptual, PerceptualParams};
 use crate::predictive::{Predictive, PredictiveParams};
 use crate::quality::{Bounds, Quality};
@@ -120,14 +122,48 @@ impl Setup {
 /// The names [`from_name`] accepts.
 pub const CONTROLLER_NAMES: [&str; 5] = ["fixed", "step", "hysteresis", "predictive", "perceptual"];
 
+/// Where the options that name a file (`predictive`'s `ladder=PATH`, `perceptual`'s
+/// `model=PATH`) get its text. The library reads no files itself: the caller says how (the
+/// steadyray binary reads them from disk; an engine may ship them in its assets).
+pub trait OptionFiles {
+    /// The text of the file `path` names, or why it cannot be had.
+    fn read(&self, path: &str) -> Result<String, String>;
+}
+
+/// No files: an option that names one is refused, saying how to give it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoFiles;
+
+impl OptionFiles for NoFiles {
+    fn read(&self, path: &str) -> Result<String, String> {
+        Err(format!(
+            "{path} is a file, and this controller was built without a way to read files: \
+             build it with from_name_with and an OptionFiles (or pass the parsed ladder or \
+             model in its parameters)"
+        ))
+    }
+}
+
 /// Builds a controller by name (`fixed`, `step`, `hysteresis`, `predictive`, `perceptual`) with options
 /// written `key=value`, separated by spaces or `;` (e.g. `"knob=depth"`,
 /// `"up_after=10; order=depth,spp"`). An empty string gives the defaults. Unknown names,
 /// unknown keys, unparsable values and bad setups are errors that say what is accepted.
+/// Options that name a file are refused: see [`from_name_with`].
 pub fn from_name(
     name: &str,
     setup: Setup,
     options: &str,
+) -> Result<Box<dyn Controller>, ConfigError> {
+    from_name_with(name, setup, options, &NoFiles)
+}
+
+/// [`from_name`], with `files` giving the text of the files that options name (`ladder=`,
+/// `model=`).
+pub fn from_name_with(
+    name: &str,
+    setup: Setup,
+    options: &str,
+    files: &dyn OptionFiles,
 ) -> Result<Box<dyn Controller>, ConfigError> {
     let options = parse_options(options)?;
     let name = name.trim();
@@ -167,19 +203,42 @@ pub fn from_name(
         "predictive" => {
             let mut p = PredictiveParams::default();
             for (k, v) in &options {
-                p.set(k, v)?;
+                match k.as_str() {
+                    "ladder" => p.ladder = Some(read_option(k, v, files, Ladder::from_json)?),
+                    _ => p.set(k, v)?,
+                }
             }
             Box::new(Predictive::new(setup, p)?)
         }
         "perceptual" => {
             let mut p = PerceptualParams::default();
             for (k, v) in &options {
-                p.set(k, v)?;
+                match k.as_str() {
+                    "model" => p.model = Some(read_option(k, v, files, MotionModel::from_json)?),
+                    _ => p.set(k, v)?,
+                }
             }
             Box::new(Perceptual::new(setup, p)?)
         }
         other => return Err(ConfigError::UnknownController(other.to_string())),
     })
+}
+
+/// Reads the file option `key`=`path` through `files` and parses it with `parse`; an error
+/// names the option and the file.
+fn read_option<T>(
+    key: &str,
+    path: &str,
+    files: &dyn OptionFiles,
+    parse: fn(&str) -> Result<T, String>,
+) -> Result<T, ConfigError> {
+    let bad = |why: String| ConfigError::BadOption {
+        key: key.to_string(),
+        value: path.to_string(),
+        why,
+    };
+    let text = files.read(path.trim()).map_err(bad)?;
+    parse(&text).map_err(|why| bad(format!("{}: {why}", path.trim())))
 }
 
 /// Splits `key=value` items separated by whitespace or `;`.

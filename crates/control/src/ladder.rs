@@ -33,7 +33,6 @@
 
 use crate::quality::Quality;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
 
 /// One setting on the ladder, with what calibration measured for it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -128,13 +127,6 @@ impl Ladder {
         let ladder: Ladder = serde_json::from_str(text).map_err(|e| e.to_string())?;
         ladder.validate()?;
         Ok(ladder)
-    }
-
-    /// Reads and checks `ladder.json`.
-    pub fn load(path: &Path) -> Result<Self, String> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        Self::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))
     }
 
     /// The qualities along the ladder, cheapest first.

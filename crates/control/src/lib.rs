@@ -95,7 +95,10 @@ pub mod simulate;
 pub mod step;
 
 pub use band::{Band, Position};
-pub use controller::{CONTROLLER_NAMES, Controller, DisplayCosts, Setup, from_name, parse_options};
+pub use controller::{
+    CONTROLLER_NAMES, Controller, DisplayCosts, NoFiles, OptionFiles, Setup, from_name,
+    from_name_with, parse_options,
+};
 pub use decision::{Action, Decision, Reason};
 pub use error::ConfigError;
 pub use fixed::Fixed;

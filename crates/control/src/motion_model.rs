@@ -46,7 +46,6 @@
 use crate::ladder::Ladder;
 use serde::{Deserialize, Serialize};
 use std::fmt;
-use std::path::Path;
 
 /// What a model's scores measure.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -169,13 +168,6 @@ impl MotionModel {
         let model: MotionModel = serde_json::from_str(text).map_err(|e| e.to_string())?;
         model.validate()?;
         Ok(model)
-    }
-
-    /// Reads and checks `motion.json`.
-    pub fn load(path: &Path) -> Result<Self, String> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        Self::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))
     }
 
     /// The score at grid speed `i`, frame time `j` and ladder position `u` (linear between

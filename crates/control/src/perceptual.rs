@@ -104,19 +104,18 @@ const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, warp,
                                measured_cut, forgetting, outlier_k, confirm)";
 
 impl PerceptualParams {
-    /// Sets one option by name (used by [`crate::from_name`]).
+    /// Sets one option by name (used by [`crate::from_name`]); `model`, which names a file,
+    /// is [`crate::from_name_with`]'s.
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), ConfigError> {
         match key {
             "model" => {
-                let model =
-                    MotionModel::load(std::path::Path::new(value.trim())).map_err(|why| {
-                        ConfigError::BadOption {
-                            key: key.to_string(),
-                            value: value.to_string(),
-                            why,
-                        }
-                    })?;
-                self.model = Some(model);
+                return Err(ConfigError::BadOption {
+                    key: key.to_string(),
+                    value: value.to_string(),
+                    why: "names a file: set `model` to a parsed MotionModel, or build the \
+                          controller with from_name_with"
+                        .into(),
+                });
             }
             "hold_ms" => self.hold_ms = parse_option(key, value, within(0.0, 1e6))?,
             "margin" => self.margin = parse_option(key, value, within(0.0, 1.0))?,

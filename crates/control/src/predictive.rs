@@ -137,7 +137,8 @@ const PREDICTIVE_KEYS: &str = "order, target, deadband, min_reach, max_raise, tr
                                trades, forgetting, outlier_k, confirm, ladder";
 
 impl PredictiveParams {
-    /// Sets one option by name (used by [`crate::from_name`]).
+    /// Sets one option by name (used by [`crate::from_name`]); `ladder`, which names a file,
+    /// is [`crate::from_name_with`]'s.
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), ConfigError> {
         match key {
             "order" => self.order = parse_option(key, value, |_| Ok(()))?,
@@ -152,14 +153,13 @@ impl PredictiveParams {
             "outlier_k" => self.cost.outlier_k = parse_option(key, value, within(1.0, 1e6))?,
             "confirm" => self.cost.confirm = parse_option(key, value, within(1, 100))?,
             "ladder" => {
-                let ladder = Ladder::load(std::path::Path::new(value.trim())).map_err(|why| {
-                    ConfigError::BadOption {
-                        key: key.to_string(),
-                        value: value.to_string(),
-                        why,
-                    }
-                })?;
-                self.ladder = Some(ladder);
+                return Err(ConfigError::BadOption {
+                    key: key.to_string(),
+                    value: value.to_string(),
+                    why: "names a file: set `ladder` to a parsed Ladder, or build the \
+                          controller with from_name_with"
+                        .into(),
+                });
             }
             _ => {
                 return Err(ConfigError::UnknownOption {

@@ -2,7 +2,7 @@
 
 mod common;
 
-use steadyray_control::{Band, Bounds, ConfigError, Quality, Setup, from_name};
+use steadyray_control::{Band, Bounds, ConfigError, Quality, Setup, from_name_with};
 
 /// The options a controller needs to be built: none, or `perceptual`'s model.
 fn needed_options(name: &str) -> String {
@@ -20,7 +20,7 @@ fn setup() -> Setup {
 #[test]
 fn every_name_builds_with_defaults() {
     for name in steadyray_control::CONTROLLER_NAMES {
-        let c = from_name(name, setup(), &needed_options(name)).unwrap();
+        let c = build(name, setup(), &needed_options(name)).unwrap();
         assert_eq!(c.name(), name);
         assert_eq!(c.quality(), Bounds::default().max_quality());
     }
@@ -28,17 +28,17 @@ fn every_name_builds_with_defaults() {
 
 #[test]
 fn options_are_parsed_and_checked() {
-    assert!(from_name("step", setup(), "knob=both").is_ok());
-    assert!(from_name("hysteresis", setup(), "up_after=10; order=depth,spp").is_ok());
+    assert!(build("step", setup(), "knob=both").is_ok());
+    assert!(build("hysteresis", setup(), "up_after=10; order=depth,spp").is_ok());
     assert!(
-        from_name(
+        build(
             "predictive",
             setup(),
             "order=spp,scale target=0.4 forgetting=0.8"
         )
         .is_ok()
     );
-    let err = |name: &str, opts: &str| from_name(name, setup(), opts).unwrap_err();
+    let err = |name: &str, opts: &str| build(name, setup(), opts).unwrap_err();
     assert!(matches!(
         err("step", "knob=colour"),
         ConfigError::BadOption { .. }
@@ -51,7 +51,7 @@ fn options_are_parsed_and_checked() {
         err("fixed", "knob=depth"),
         ConfigError::UnknownOption { .. }
     ));
-    let fixed = from_name("fixed", setup(), "spp=4 depth=3 scale=0.5").unwrap();
+    let fixed = build("fixed", setup(), "spp=4 depth=3 scale=0.5").unwrap();
     assert_eq!(fixed.quality(), Quality::new(4.0, 3, 0.5));
     assert!(matches!(
         err("fixed", "spp=1000"),
@@ -121,10 +121,7 @@ fn bad_bands_bounds_and_starts_are_errors() {
         start,
     };
     for name in steadyray_control::CONTROLLER_NAMES {
-        assert!(
-            from_name(name, bad, &needed_options(name)).is_err(),
-            "{name}"
-        );
+        assert!(build(name, bad, &needed_options(name)).is_err(), "{name}");
     }
     // Step on S needs a whole S inside the bounds: an empty ladder.
     let narrow = Bounds {
@@ -134,8 +131,17 @@ fn bad_bands_bounds_and_starts_are_errors() {
     };
     let s = Setup::new(Band::PAPER, narrow, Quality::new(1.5, 3, 1.0)).unwrap();
     assert!(matches!(
-        from_name("step", s, "knob=spp"),
+        build("step", s, "knob=spp"),
         Err(ConfigError::EmptyLadder { .. })
     ));
-    assert!(from_name("step", s, "knob=depth").is_ok());
+    assert!(build("step", s, "knob=depth").is_ok());
+}
+
+/// Builds a controller with the files its options name read from disk.
+fn build(
+    name: &str,
+    setup: Setup,
+    options: &str,
+) -> Result<Box<dyn steadyray_control::Controller>, ConfigError> {
+    from_name_with(name, setup, options, &common::Disk)
 }

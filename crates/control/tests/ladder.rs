@@ -5,7 +5,18 @@
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
 use steadyray_control::metrics::summarize;
 use steadyray_control::simulate::{RendererModel, run};
-use steadyray_control::{Band, Bounds, ConfigError, Quality, Setup, from_name};
+use steadyray_control::{
+    Band, Bounds, ConfigError, OptionFiles, Quality, Setup, from_name, from_name_with,
+};
+
+/// Reads the files that options name from disk, as the steadyray binary does.
+struct Disk;
+
+impl OptionFiles for Disk {
+    fn read(&self, path: &str) -> Result<String, String> {
+        std::fs::read_to_string(path).map_err(|e| format!("cannot read {path}: {e}"))
+    }
+}
 
 const WARM_UP: usize = 20;
 
@@ -94,7 +105,7 @@ fn holds_the_corridor_sweep_like_the_default_order() {
         model.seed = seed;
         let mut summaries = Vec::new();
         for options in [String::new(), format!("ladder={}", path.display())] {
-            let mut c = from_name("predictive", setup(), &options).unwrap();
+            let mut c = from_name_with("predictive", setup(), &options, &Disk).unwrap();
             let records = run(c.as_mut(), &model, frames + WARM_UP);
             let counted = &records[WARM_UP..];
             if !options.is_empty() {
@@ -119,10 +130,14 @@ fn holds_the_corridor_sweep_like_the_default_order() {
 
 #[test]
 fn a_missing_or_bad_ladder_is_a_clear_error() {
-    let err = from_name("predictive", setup(), "ladder=/nonexistent/ladder.json").unwrap_err();
+    let missing = "ladder=/nonexistent/ladder.json";
+    let err = from_name_with("predictive", setup(), missing, &Disk).unwrap_err();
     assert!(
         matches!(&err, ConfigError::BadOption { key, .. } if key == "ladder"),
         "{err}"
     );
     assert!(err.to_string().contains("cannot read"), "{err}");
+    // Without a way to read files the library refuses the option and says what to do.
+    let err = from_name("predictive", setup(), missing).unwrap_err();
+    assert!(err.to_string().contains("from_name_with"), "{err}");
 }

@@ -188,13 +188,23 @@ fn options_are_checked() {
         unknown.contains("perceptual") && unknown.contains("hold_ms"),
         "{unknown}"
     );
+    // `model` names a file: the parameters take a parsed model, from_name_with reads one.
     assert!(
-        p.set("model", "/nonexistent/motion.json")
+        p.set("model", "motion.json")
             .unwrap_err()
             .to_string()
-            .contains("cannot read")
+            .contains("from_name_with")
     );
-    p.set("model", &model_file().display().to_string()).unwrap();
+    let missing = steadyray_control::from_name_with(
+        "perceptual",
+        setup,
+        "model=/nonexistent/motion.json",
+        &common::Disk,
+    )
+    .unwrap_err();
+    assert!(missing.to_string().contains("cannot read"), "{missing}");
+    let text = std::fs::read_to_string(model_file()).unwrap();
+    p.model = Some(steadyray_control::MotionModel::from_json(&text).unwrap());
     assert_eq!(
         p.model.map(|m| m.ladder.points.len()),
         Some(model().ladder.points.len())

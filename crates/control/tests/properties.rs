@@ -3,7 +3,7 @@
 mod common;
 
 use proptest::prelude::*;
-use steadyray_control::{Band, Bounds, FrameReport, Quality, Setup, from_name};
+use steadyray_control::{Band, Bounds, ConfigError, FrameReport, Quality, Setup, from_name_with};
 
 fn tp() -> impl Strategy<Value = f64> {
     prop_oneof![
@@ -34,7 +34,7 @@ proptest! {
             "perceptual" => format!("model={}", common::model_file().display()),
             _ => String::new(),
         };
-        let mut c = from_name(name, setup, &opts).unwrap();
+        let mut c = build(name, setup, &opts).unwrap();
         for (tp_ms, eye, decay, shadow, speed) in frames {
             let q = c.quality();
             let depth = q.depth as usize;
@@ -51,4 +51,13 @@ proptest! {
             }
         }
     }
+}
+
+/// Builds a controller with the files its options name read from disk.
+fn build(
+    name: &str,
+    setup: Setup,
+    options: &str,
+) -> Result<Box<dyn steadyray_control::Controller>, ConfigError> {
+    from_name_with(name, setup, options, &common::Disk)
 }

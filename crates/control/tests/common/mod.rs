@@ -86,3 +86,12 @@ pub fn model_file() -> PathBuf {
     std::fs::write(&path, serde_json::to_string(&model()).unwrap()).unwrap();
     path
 }
+
+/// Reads the files that options name from disk, as the steadyray binary does.
+pub struct Disk;
+
+impl steadyray_control::OptionFiles for Disk {
+    fn read(&self, path: &str) -> Result<String, String> {
+        std::fs::read_to_string(path).map_err(|e| format!("cannot read {path}: {e}"))
+    }
+}

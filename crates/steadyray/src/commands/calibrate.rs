@@ -364,7 +364,10 @@ fn run_motion(args: &CalibrateArgs, renderer: &mut dyn Renderer, scene: &Scene) 
         .ladder
         .as_ref()
         .context("--motion scores the points of a calibrated ladder: give --ladder FILE")?;
-    let ladder = Ladder::load(ladder_path).map_err(anyhow::Error::msg)?;
+    let text = std::fs::read_to_string(ladder_path)
+        .with_context(|| format!("cannot read {}", ladder_path.display()))?;
+    let ladder = Ladder::from_json(&text)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", ladder_path.display()))?;
     let out = args.out.clone().unwrap_or_else(|| "motion.json".into());
     if let Some(dir) = &args.video {
         crate::bench::video::prepare(dir)?;
