@@ -39,6 +39,7 @@ pub const SLOPE_SPAN: f64 = 2.0;
 
 /// Parameters of [`CostModel`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct CostParams {
     /// Weight decay per frame, in (0, 1]: 0.95 remembers about the last 20 frames.
     pub forgetting: f64,

@@ -29,6 +29,7 @@ use crate::report::{FrameReport, ReportError};
 
 /// Parameters of [`Hysteresis`], with their option names and defaults.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct HysteresisParams {
     /// `order`: knobs in raising order; cut in reverse. Default `depth,scale,spp`.
     pub order: KnobOrder,

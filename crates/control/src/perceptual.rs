@@ -55,6 +55,7 @@ use steadyray_display::{BandShape, DisplayConfig, SyncMode, shaped_band};
 
 /// Parameters of [`Perceptual`], with their option names and defaults.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct PerceptualParams {
     /// `model`: the quality model (a `motion.json`). Required.
     pub model: Option<MotionModel>,
@@ -104,6 +105,14 @@ const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, warp,
                                measured_cut, forgetting, outlier_k, confirm)";
 
 impl PerceptualParams {
+    /// The defaults with the quality model `model` (the one option without a default).
+    pub fn with_model(model: MotionModel) -> Self {
+        Self {
+            model: Some(model),
+            ..Self::default()
+        }
+    }
+
     /// Sets one option by name (used by [`crate::from_name`]); `model`, which names a file,
     /// is [`crate::from_name_with`]'s.
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), ConfigError> {

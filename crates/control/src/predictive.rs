@@ -83,6 +83,7 @@ pub const TRADE_MARGIN: f64 = 0.02;
 
 /// Parameters of [`Predictive`], with their option names and defaults.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct PredictiveParams {
     /// `order`: knobs in raising order; cut in reverse. Default `depth,scale,spp`.
     pub order: KnobOrder,

@@ -51,6 +51,7 @@ impl fmt::Display for StepKnob {
 
 /// Parameters of [`Step`]. Option: `knob=depth|spp|both` (default `depth`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub struct StepParams {
     pub knob: StepKnob,
 }

@@ -13,10 +13,7 @@ use steadyray_control::{
 fn controller() -> Perceptual {
     let bounds = Bounds::default();
     let setup = Setup::new(Band::PAPER, bounds, Quality::new(1.0, 4, 1.0)).unwrap();
-    let params = PerceptualParams {
-        model: Some(model()),
-        ..PerceptualParams::default()
-    };
+    let params = PerceptualParams::with_model(model());
     Perceptual::new(setup, params).unwrap()
 }
 
@@ -210,11 +207,8 @@ fn options_are_checked() {
         Some(model().ladder.points.len())
     );
     // A hand-over as long as the shortest frame leaves it no band.
-    let params = PerceptualParams {
-        model: Some(model()),
-        hand_over_ms: 16.0,
-        ..PerceptualParams::default()
-    };
+    let mut params = PerceptualParams::with_model(model());
+    params.hand_over_ms = 16.0;
     let err = Perceptual::new(setup, params).unwrap_err().to_string();
     assert!(err.contains("leaves no band"), "{err}");
 }
@@ -225,11 +219,8 @@ fn options_are_checked() {
 fn warped_refreshes_take_their_time_from_the_longer_frames_bands() {
     let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
     let controller = |warp_ms: f64| {
-        let params = PerceptualParams {
-            model: Some(model()),
-            warp_ms,
-            ..PerceptualParams::default()
-        };
+        let mut params = PerceptualParams::with_model(model());
+        params.warp_ms = warp_ms;
         Perceptual::new(setup, params).unwrap()
     };
     // It starts at three refreshes a frame: two warps of 6 ms come off; the lower edge stays
@@ -257,11 +248,8 @@ fn warped_refreshes_take_their_time_from_the_longer_frames_bands() {
 fn measured_costs_move_the_bands_and_keep_what_it_learned() {
     let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
     let built = |warp_ms: f64| {
-        let params = PerceptualParams {
-            model: Some(model()),
-            warp_ms,
-            ..PerceptualParams::default()
-        };
+        let mut params = PerceptualParams::with_model(model());
+        params.warp_ms = warp_ms;
         Perceptual::new(setup, params).unwrap()
     };
     let mut c = built(0.0);
