@@ -17,8 +17,9 @@
 use crate::box_test::Avx;
 use crate::box_test::{BoxRay, BoxTest, Portable};
 use crate::build::{BvhError, GpuOut, Layout, lay_out};
+use crate::child_order::Pending;
 use crate::gpu_node::{GPU_EMPTY, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
-use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, finite_ray, push_all_but_nearest};
+use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, finite_ray};
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -310,24 +311,15 @@ impl TopLevel {
             return best;
         }
         let br = BoxRay::new(origin, dir);
-        // Uninitialised: zeroing it would cost as much as a short traversal.
-        let mut stack = [MaybeUninit::<(u32, f32)>::uninit(); STACK_SIZE];
-        let mut sp = 0usize;
+        let mut stack = [MaybeUninit::uninit(); STACK_SIZE];
+        let mut pending = Pending::new(&mut stack);
         let mut cur = 0u32;
         loop {
             if cur & LEAF == 0 {
                 let node = &self.wide[cur as usize];
-                let (t_near, mask) = B::test(&br, node, best);
-                if mask != 0 {
-                    let mut order = [(0.0f32, 0u32); WIDTH];
-                    let mut n = 0;
-                    for (lane, (&d, &child)) in t_near.iter().zip(&node.child).enumerate() {
-                        if mask & (1 << lane) != 0 {
-                            order[n] = (d, child);
-                            n += 1;
-                        }
-                    }
-                    cur = push_all_but_nearest(&mut order[..n], &mut stack, &mut sp);
+                let (near, lanes) = B::test(&br, node, best);
+                if lanes != 0 {
+                    cur = pending.enter(&near, &node.child, lanes);
                     continue;
                 }
             } else {
@@ -336,18 +328,10 @@ impl TopLevel {
                     best = leaf(i, best);
                 }
             }
-            // Pop the nearest pending child that can still hold a hit no farther than best.
-            loop {
-                if sp == 0 {
-                    return best;
-                }
-                sp -= 1;
-                // SAFETY: entries below `sp` were all written by the pushes above.
-                let (c, d) = unsafe { stack[sp].assume_init() };
-                if d <= best {
-                    cur = c;
-                    break;
-                }
+            // The nearest pending child that can still hold a hit no farther than best.
+            match pending.pop_within(best) {
+                Some(next) => cur = next,
+                None => return best,
             }
         }
     }
