@@ -17,7 +17,6 @@
 use crate::box_test::Avx;
 use crate::box_test::{BoxRay, BoxTest, Portable};
 use crate::build::{BvhError, GpuOut, Layout, lay_out};
-use crate::child_order::Pending;
 use crate::gpu_node::{GPU_EMPTY, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
 use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, finite_ray};
 use glam::{Vec3, Vec3A};
@@ -311,15 +310,24 @@ impl TopLevel {
             return best;
         }
         let br = BoxRay::new(origin, dir);
-        let mut stack = [MaybeUninit::uninit(); STACK_SIZE];
-        let mut pending = Pending::new(&mut stack);
+        // Uninitialised: zeroing it would cost as much as a short traversal.
+        let mut stack = [MaybeUninit::<(u32, f32)>::uninit(); STACK_SIZE];
+        let mut sp = 0usize;
         let mut cur = 0u32;
         loop {
             if cur & LEAF == 0 {
                 let node = &self.wide[cur as usize];
-                let (near, lanes) = B::test(&br, node, best);
-                if lanes != 0 {
-                    cur = pending.enter(&near, &node.child, lanes);
+                let (t_near, mask) = B::test(&br, node, best);
+                if mask != 0 {
+                    let mut order = [(0.0f32, 0u32); WIDTH];
+                    let mut n = 0;
+                    for (lane, (&d, &child)) in t_near.iter().zip(&node.child).enumerate() {
+                        if mask & (1 << lane) != 0 {
+                            order[n] = (d, child);
+                            n += 1;
+                        }
+                    }
+                    cur = push_all_but_nearest(&mut order[..n], &mut stack, &mut sp);
                     continue;
                 }
             } else {
@@ -328,10 +336,18 @@ impl TopLevel {
                     best = leaf(i, best);
                 }
             }
-            // The nearest pending child that can still hold a hit no farther than best.
-            match pending.pop_within(best) {
-                Some(next) => cur = next,
-                None => return best,
+            // Pop the nearest pending child that can still hold a hit no farther than best.
+            loop {
+                if sp == 0 {
+                    return best;
+                }
+                sp -= 1;
+                // SAFETY: entries below `sp` were all written by the pushes above.
+                let (c, d) = unsafe { stack[sp].assume_init() };
+                if d <= best {
+                    cur = c;
+                    break;
+                }
             }
         }
     }
@@ -405,6 +421,31 @@ impl TopLevel {
             cur = unsafe { stack[sp].assume_init() };
         }
     }
+}
+
+/// The children a ray entered, as (entry distance, child): pushes all but the nearest on
+/// the stack of pending (child, distance) pairs, the farthest deepest, and returns the
+/// nearest, to descend into. `hits` is not empty.
+#[inline(always)]
+fn push_all_but_nearest(
+    hits: &mut [(f32, u32)],
+    stack: &mut [MaybeUninit<(u32, f32)>; STACK_SIZE],
+    sp: &mut usize,
+) -> u32 {
+    // Nearest last: insertion sort by descending entry distance.
+    for i in 1..hits.len() {
+        let mut j = i;
+        while j > 0 && hits[j - 1].0 < hits[j].0 {
+            hits.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let last = hits.len() - 1;
+    for &(d, c) in &hits[..last] {
+        stack[*sp].write((c, d));
+        *sp += 1;
+    }
+    hits[last].1
 }
 
 /// A CPU leaf entry: `LEAF | (count - 1) << 28 | first`.
