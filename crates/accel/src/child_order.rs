@@ -1,5 +1,7 @@
-//! The order a closest-hit traversal of the CPU's wide trees enters the children a ray
-//! meets: nearest first, the others pending on a stack, farthest deepest.
+//! The order the closest-hit traversal of a mesh's 8-wide tree ([`crate::Bvh::closest`])
+//! enters the children a ray meets: nearest first, the others pending on a stack, farthest
+//! deepest. (The top-level tree keeps a per-lane gather and an insertion sort: with this
+//! order the corridor's and `flyby`'s frames took 7 and 10 % longer.)
 //!
 //! A child the ray enters is one [`ChildKey`]: the bits of its entry distance above, its
 //! child entry below. Entry distances are never negative (the box test starts them at 0),
