@@ -21,6 +21,7 @@
 
 mod box_test;
 mod build;
+mod child_order;
 mod gpu_node;
 mod top_level;
 mod tri4;

@@ -18,7 +18,7 @@ use crate::box_test::Avx;
 use crate::box_test::{BoxRay, BoxTest, Portable};
 use crate::build::{BvhError, GpuOut, Layout, lay_out};
 use crate::gpu_node::{GPU_EMPTY, GPU_STACK_SIZE, GPU_WIDTH, GpuNode};
-use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, finite_ray, push_all_but_nearest};
+use crate::wide::{LEAF, STACK_SIZE, WIDTH, WideNode, finite_ray};
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -421,6 +421,31 @@ impl TopLevel {
             cur = unsafe { stack[sp].assume_init() };
         }
     }
+}
+
+/// The children a ray entered, as (entry distance, child): pushes all but the nearest on
+/// the stack of pending (child, distance) pairs, the farthest deepest, and returns the
+/// nearest, to descend into. `hits` is not empty.
+#[inline(always)]
+fn push_all_but_nearest(
+    hits: &mut [(f32, u32)],
+    stack: &mut [MaybeUninit<(u32, f32)>; STACK_SIZE],
+    sp: &mut usize,
+) -> u32 {
+    // Nearest last: insertion sort by descending entry distance.
+    for i in 1..hits.len() {
+        let mut j = i;
+        while j > 0 && hits[j - 1].0 < hits[j].0 {
+            hits.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let last = hits.len() - 1;
+    for &(d, c) in &hits[..last] {
+        stack[*sp].write((c, d));
+        *sp += 1;
+    }
+    hits[last].1
 }
 
 /// A CPU leaf entry: `LEAF | (count - 1) << 28 | first`.

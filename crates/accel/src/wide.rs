@@ -8,6 +8,7 @@
 #[cfg(target_arch = "x86_64")]
 use crate::box_test::Avx;
 use crate::box_test::{BoxRay, BoxTest, Portable};
+use crate::child_order::Pending;
 use crate::tri4::Tri4;
 use crate::watertight::{T_MIN, WatertightRay};
 use glam::Vec3A;
@@ -65,31 +66,6 @@ impl WideNode {
 #[inline(always)]
 pub(crate) fn finite_ray(origin: Vec3A, dir: Vec3A) -> bool {
     (origin.is_finite_mask() & dir.is_finite_mask()).all()
-}
-
-/// The children a ray entered, as (entry distance, child): pushes all but the nearest on
-/// the stack of pending (child, distance) pairs, the farthest deepest, and returns the
-/// nearest, to descend into. `hits` is not empty.
-#[inline(always)]
-pub(crate) fn push_all_but_nearest(
-    hits: &mut [(f32, u32)],
-    stack: &mut [MaybeUninit<(u32, f32)>; STACK_SIZE],
-    sp: &mut usize,
-) -> u32 {
-    // Nearest last: insertion sort by descending entry distance.
-    for i in 1..hits.len() {
-        let mut j = i;
-        while j > 0 && hits[j - 1].0 < hits[j].0 {
-            hits.swap(j - 1, j);
-            j -= 1;
-        }
-    }
-    let last = hits.len() - 1;
-    for &(d, c) in &hits[..last] {
-        stack[*sp].write((c, d));
-        *sp += 1;
-    }
-    hits[last].1
 }
 
 /// The vector extensions a CPU pass is compiled for: the traversal's box tests here, and the
@@ -207,26 +183,15 @@ impl Wide {
         // Ties with the incoming t_max are not hits (id < 0 never holds).
         let mut best_id = 0u32;
         let mut found = false;
-        // Uninitialised: zeroing it would cost as much as a short traversal.
-        let mut stack = [MaybeUninit::<(u32, f32)>::uninit(); STACK_SIZE];
-        let mut sp = 0usize;
+        let mut stack = [MaybeUninit::uninit(); STACK_SIZE];
+        let mut pending = Pending::new(&mut stack);
         let mut cur = 0u32;
         loop {
             if cur & LEAF == 0 {
                 let node = &self.nodes[cur as usize];
-                let (t_near, mask) = B::test(&br, node, best_t);
-                if mask != 0 {
-                    let mut order = [(0.0f32, 0u32); WIDTH];
-                    let mut n = 0;
-                    // The hit lanes in ascending order, one step per hit lane.
-                    let mut lanes = mask;
-                    while lanes != 0 {
-                        let lane = lanes.trailing_zeros() as usize;
-                        lanes &= lanes - 1;
-                        order[n] = (t_near[lane], node.child[lane]);
-                        n += 1;
-                    }
-                    cur = push_all_but_nearest(&mut order[..n], &mut stack, &mut sp);
+                let (near, lanes) = B::test(&br, node, best_t);
+                if lanes != 0 {
+                    cur = pending.enter(&near, &node.child, lanes);
                     continue;
                 }
             } else {
@@ -245,18 +210,10 @@ impl Wide {
                     }
                 }
             }
-            // Pop the nearest pending child that can still hold a closer hit.
-            loop {
-                if sp == 0 {
-                    return found.then_some((best_t, best_id));
-                }
-                sp -= 1;
-                // SAFETY: entries below `sp` were all written by the pushes above.
-                let (c, d) = unsafe { stack[sp].assume_init() };
-                if d <= best_t {
-                    cur = c;
-                    break;
-                }
+            // The nearest pending child that can still hold a closer hit.
+            match pending.pop_within(best_t) {
+                Some(next) => cur = next,
+                None => return found.then_some((best_t, best_id)),
             }
         }
     }
