@@ -71,6 +71,26 @@ impl RenderSettings {
         Ok(())
     }
 
+    /// The settings of a frame at resolution scale `scale` of a `full`-size image (see
+    /// [`RenderSettings::scaled_size`]), `spp` eye rays per pixel and depth `max_depth`: the
+    /// one way every command and the window size a frame of a quality.
+    pub fn scaled(full: (u32, u32), scale: f32, spp: f32, max_depth: u32) -> Self {
+        let (width, height) = Self::scaled_size(full, scale);
+        Self {
+            width,
+            height,
+            spp,
+            max_depth,
+        }
+    }
+
+    /// The image size at resolution scale `scale` of a `full`-size image: each side scaled
+    /// and rounded to the nearest pixel, at least 1 pixel.
+    pub fn scaled_size((width, height): (u32, u32), scale: f32) -> (u32, u32) {
+        let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
+        (side(width), side(height))
+    }
+
     /// Number of pixels.
     pub fn pixels(&self) -> u64 {
         self.width as u64 * self.height as u64

@@ -1,13 +1,14 @@
 //! The golden test of `steadyray bench --simulate`: with its default arguments it writes the
-//! same `frames.csv` and `summary.json` as the files kept in `tests/golden/bench-simulate/`.
-//! The simulated renderer runs on a fake clock with seeded noise, so both files are the same
+//! same `frames.csv` and `summary.json` as the files kept in
+//! `crates/experiment/tests/golden/bench-simulate/` (the library's golden test, which calls
+//! `bench::run`, compares the same files). The simulated renderer runs on a fake clock with seeded noise, so both files are the same
 //! from run to run and from machine to machine, except for two fields of `summary.json`
 //! masked here (replaced by `"masked"` in the kept file and in the run's before comparing):
 //! `machine` (host name, CPU, threads) and `git_revision`.
 //!
 //! To write the kept files again from the code as it is (after a deliberate change of the
 //! controllers or of the bench's output), run
-//! `STEADYRAY_BLESS=1 cargo test -p steadyray --test golden`.
+//! `STEADYRAY_BLESS=1 cargo test -p steadyray-experiment --test golden`.
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -19,7 +20,7 @@ const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 const MASKED: [&str; 2] = ["machine", "git_revision"];
 
 fn golden_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/bench-simulate")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiment/tests/golden/bench-simulate")
 }
 
 /// `summary.json` with the fields of [`MASKED`] replaced by `"masked"`.

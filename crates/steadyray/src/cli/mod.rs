@@ -1,7 +1,10 @@
 //! The command line: subcommands and their arguments.
 
+pub mod experiment;
+
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
+use steadyray_experiment::config as lib;
 
 /// steadyray: a real-time ray tracer that holds its frame rate steady by trading image
 /// quality, frame by frame.
@@ -16,7 +19,7 @@ pub struct Cli {
 pub enum Command {
     /// Reproduce the paper's experiment: every controller over the camera sweep, reported
     /// as a table, frames.csv, summary.json and frame-time plots.
-    Bench(crate::bench::BenchArgs),
+    Bench(experiment::BenchArgs),
     /// Render one still image to PNG (or EXR, by the file extension).
     Render(RenderArgs),
     /// List the built-in scenes.
@@ -24,19 +27,19 @@ pub enum Command {
     /// List the GPU adapters wgpu can see.
     Adapters,
     /// Compare two images (FLIP, PSNR, SSIM) and print them as one JSON line.
-    Compare(crate::commands::compare::CompareArgs),
+    Compare(experiment::CompareArgs),
     /// Measure (S, R, scale) settings' cost and FLIP over views of the camera path and write
     /// the Pareto front as a ladder for `predictive:ladder=FILE`.
-    Calibrate(crate::commands::calibrate::CalibrateArgs),
+    Calibrate(experiment::CalibrateArgs),
     /// Open an interactive window: the scene rendered continuously at the controller's
     /// quality, with a live frame-time HUD (or play back a recording with --playback).
     View(crate::view::ViewArgs),
     /// Ray-casting throughput of the triangle BVH on a mesh: primary and diffuse-bounce rays
     /// per second, as one JSON line.
-    Raybench(crate::commands::raybench::RaybenchArgs),
+    Raybench(experiment::RaybenchArgs),
     /// Bring ColorVideoVDP's JOD scores (scripts/jod/) into a real-clock bench's reports:
     /// `merge` into summary.json and table.md, `plot` JOD against displayed fps.
-    Jod(crate::commands::jod::JodArgs),
+    Jod(experiment::JodArgs),
 }
 
 /// Which renderer backend to use.
@@ -77,11 +80,20 @@ pub struct BoundsArgs {
 impl BoundsArgs {
     /// The checked bounds.
     pub fn bounds(&self) -> Result<steadyray_control::Bounds, steadyray_control::ConfigError> {
-        steadyray_control::Bounds::new(
-            (self.spp_min, self.spp_max),
-            (self.depth_min, self.depth_max),
-            (self.scale_min, self.scale_max),
-        )
+        lib::BoundsConfig::from(self).bounds()
+    }
+}
+
+impl From<&BoundsArgs> for lib::BoundsConfig {
+    fn from(args: &BoundsArgs) -> Self {
+        Self {
+            spp_min: args.spp_min,
+            spp_max: args.spp_max,
+            depth_min: args.depth_min,
+            depth_max: args.depth_max,
+            scale_min: args.scale_min,
+            scale_max: args.scale_max,
+        }
     }
 }
 
@@ -113,15 +125,30 @@ pub enum PathChoice {
 impl SceneArgs {
     /// Loads the scene and puts `--path` in place of its camera path.
     pub fn load(&self) -> Result<steadyray_scene::Scene, steadyray_scene::SceneError> {
-        use steadyray_scene::CameraPath;
-        let mut scene = steadyray_scene::load_scene(&self.scene)?;
-        let frames = scene.path.frames();
-        match self.path {
-            Some(PathChoice::Sweep) => scene.path = CameraPath::sweep(frames),
-            Some(PathChoice::Pans) => scene.path = CameraPath::pans(frames),
-            None => {}
+        lib::SceneConfig::from(self).load()
+    }
+}
+
+impl From<&SceneArgs> for lib::SceneConfig {
+    fn from(args: &SceneArgs) -> Self {
+        Self {
+            scene: args.scene.clone(),
+            backend: args.backend.into(),
+            path: args.path.map(|path| match path {
+                PathChoice::Sweep => lib::PathChoice::Sweep,
+                PathChoice::Pans => lib::PathChoice::Pans,
+            }),
         }
-        Ok(scene)
+    }
+}
+
+impl From<BackendChoice> for lib::BackendChoice {
+    fn from(choice: BackendChoice) -> Self {
+        match choice {
+            BackendChoice::Auto => lib::BackendChoice::Auto,
+            BackendChoice::Gpu => lib::BackendChoice::Gpu,
+            BackendChoice::Cpu => lib::BackendChoice::Cpu,
+        }
     }
 }
 
@@ -206,8 +233,7 @@ pub enum ClockChoice {
 }
 
 /// Which runs use the temporal mode (`docs/temporal.md`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum TemporalChoice {
     /// None.
     Off,
@@ -217,13 +243,21 @@ pub enum TemporalChoice {
     Both,
 }
 
-impl TemporalChoice {
-    /// The modes each controller runs in, in order (false: without it).
-    pub fn modes(self) -> &'static [bool] {
-        match self {
-            TemporalChoice::Off => &[false],
-            TemporalChoice::On => &[true],
-            TemporalChoice::Both => &[false, true],
+impl From<&TemporalChoice> for lib::TemporalChoice {
+    fn from(choice: &TemporalChoice) -> Self {
+        match choice {
+            TemporalChoice::Off => lib::TemporalChoice::Off,
+            TemporalChoice::On => lib::TemporalChoice::On,
+            TemporalChoice::Both => lib::TemporalChoice::Both,
+        }
+    }
+}
+
+impl From<&ClockChoice> for lib::ClockChoice {
+    fn from(choice: &ClockChoice) -> Self {
+        match choice {
+            ClockChoice::Frames => lib::ClockChoice::Frames,
+            ClockChoice::Real => lib::ClockChoice::Real,
         }
     }
 }
@@ -252,23 +286,12 @@ pub struct DisplayArgs {
     pub vrr: Option<steadyray_display::VrrRange>,
 }
 
-impl DisplayArgs {
-    /// Whether any display setting was given.
-    pub fn is_given(&self) -> bool {
-        self.refresh.is_some() || self.vsync.is_some() || self.vrr.is_some()
-    }
-
-    /// The checked display.
-    pub fn config(
-        &self,
-    ) -> Result<steadyray_display::DisplayConfig, steadyray_display::DisplayError> {
-        use steadyray_display::{DisplayConfig, SyncMode};
-        let sync = match (self.vrr, self.vsync) {
-            (Some(range), _) => SyncMode::Vrr(range),
-            (None, Some(Switch::Off)) => SyncMode::Off,
-            (None, _) => SyncMode::Vsync,
-        };
-        let refresh = self.refresh.unwrap_or(self.vrr.map_or(60.0, |r| r.max_hz));
-        DisplayConfig::new(refresh, sync)
+impl From<&DisplayArgs> for lib::DisplaySettings {
+    fn from(args: &DisplayArgs) -> Self {
+        Self {
+            refresh: args.refresh,
+            vsync: args.vsync.map(|switch| switch == Switch::On),
+            vrr: args.vrr,
+        }
     }
 }

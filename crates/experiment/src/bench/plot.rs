@@ -6,7 +6,6 @@
 //! Frame axes are labelled in whole numbers, and legends sit beside the data, never on it.
 
 use super::record::ControllerRun;
-use crate::commands::jod::JodPoint;
 use anyhow::{Result, anyhow};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
@@ -405,6 +404,19 @@ fn method_of(name: &str) -> (&str, bool) {
 /// Whether a run is a fixed quality (the paper's baseline, the best fixed, or any other).
 fn is_fixed(name: &str) -> bool {
     name.starts_with("fixed") || name.starts_with("best fixed")
+}
+
+/// One method on the JOD plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JodPoint {
+    /// The controller's name in the summary.
+    pub name: String,
+    /// The bench's band, ms.
+    pub band_ms: [f64; 2],
+    /// Frames shown per second, on average.
+    pub displayed_fps: f64,
+    /// The run's JOD score.
+    pub jod: f64,
 }
 
 /// JOD against mean displayed frames per second, a point per method: each controller a

@@ -4,38 +4,29 @@
 //! every method of one or more benches; `agree` says how well each cheap figure ranks those
 //! methods as JOD does.
 
+use crate::bench::plot::JodPoint;
 use crate::bench::report::{display_table, write_json};
 use anyhow::{Context, Result, bail};
-use clap::{Args, Subcommand};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
-#[derive(Debug, Args)]
-pub struct JodArgs {
-    #[command(subcommand)]
-    pub command: JodCommand,
-}
-
-#[derive(Debug, Subcommand)]
+/// A `jod` subcommand and its arguments.
+#[derive(Clone, Debug)]
 pub enum JodCommand {
     /// Add the scores of `jod.py` (its jod.json) to the bench's summary.json (each run's
     /// `jod`) and rewrite table.md beside it.
     Merge {
         /// The scores: DIR/jod.json of `scripts/jod/jod.py DIR`.
-        #[arg(long)]
         scores: PathBuf,
         /// The summary.json of the `bench --clock real --video DIR` run that made DIR.
-        #[arg(long)]
         summary: PathBuf,
     },
     /// Plot JOD against mean displayed frames per second, a point per method, for the runs
     /// of one or more merged summary.json files (PNG and SVG).
     Plot {
         /// Merged summary.json files.
-        #[arg(required = true)]
         summaries: Vec<PathBuf>,
         /// The PNG to write (an SVG of the same name beside it).
-        #[arg(short = 'o', long = "output")]
         output: PathBuf,
     },
     /// How well each figure of merged summary.json files ranks their methods as JOD does:
@@ -43,14 +34,13 @@ pub enum JodCommand {
     /// pairs of methods the displayed FLIP orders against JOD.
     Agree {
         /// Merged summary.json files.
-        #[arg(required = true)]
         summaries: Vec<PathBuf>,
     },
 }
 
 /// Runs a `jod` subcommand.
-pub fn run(args: &JodArgs) -> Result<()> {
-    match &args.command {
+pub fn run(command: &JodCommand) -> Result<()> {
+    match command {
         JodCommand::Merge { scores, summary } => {
             let table = merge(scores, summary)?;
             print!("{table}");
@@ -146,17 +136,6 @@ pub fn merge(scores_path: &Path, summary_path: &Path) -> Result<String> {
     std::fs::write(&table_path, &table)
         .with_context(|| format!("cannot write {}", table_path.display()))?;
     Ok(table)
-}
-
-/// One method on the JOD plot.
-#[derive(Clone, Debug, PartialEq)]
-pub struct JodPoint {
-    /// The controller's name in the summary.
-    pub name: String,
-    /// The bench's band, ms.
-    pub band_ms: [f64; 2],
-    pub displayed_fps: f64,
-    pub jod: f64,
 }
 
 /// A `band_ms` pair.

@@ -32,7 +32,7 @@ pub struct RunContext {
     pub clock: &'static str,
     /// Which runs used the temporal mode (`off`, `on` or `both`; those that did are
     /// labelled "+temporal").
-    pub temporal: crate::cli::TemporalChoice,
+    pub temporal: crate::config::TemporalChoice,
     /// The real clock's display and viewing set-up.
     #[serde(flatten)]
     pub real: Option<RealContext>,

@@ -10,25 +10,24 @@
 //!
 //! `--dump-rays FILE` also writes the triangles and both ray sets, with their t ranges and
 //! the hits found, for tracing the same rays elsewhere (`scripts/embree/` traces them with
-//! Embree; the format is in [`super::ray_dump`]).
+//! Embree; the format is in [`crate::ray_dump`]).
 //!
 //! On the GPU (`--backend gpu`, [`GpuRayCaster`]) the mesh is uploaded once, primary rays
 //! are generated in the kernel, bounce rays are made on the host from the primary hits and
 //! uploaded, and each repetition is one dispatch timed by GPU timestamps (the kernel alone:
 //! no upload or readback), after an untimed warm-up.
 
-use super::ray_dump::{self, DumpRay, RaySet};
 use crate::backend::requested_gpu_options;
+use crate::ray_dump::{self, DumpRay, RaySet};
 use anyhow::{Context, bail};
-use clap::{Args, ValueEnum};
 use glam::{Vec3, Vec3A};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::time::Instant;
 use steadyray_accel::Bvh;
 use steadyray_render::TimingSource;
 use steadyray_render::sampling::{cosine_direction, pcg_hash, unit_from_hash};
+use steadyray_render_cpu::raycast::{Cast, T_MAX, cast_all};
 use steadyray_render_gpu::layout::GpuCastRay;
 use steadyray_render_gpu::{CastOutcome, GpuRayCaster};
 use steadyray_scene::Camera;
@@ -36,7 +35,7 @@ use steadyray_scene::Transform;
 use steadyray_scene::mesh_import::import_mesh;
 
 /// Where `raybench` traces its rays.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RaybenchBackend {
     /// The 8-wide BVH on the CPU, rayon tasks over chunks of rays.
     Cpu,
@@ -45,42 +44,33 @@ pub enum RaybenchBackend {
     Gpu,
 }
 
-#[derive(Debug, Args)]
-pub struct RaybenchArgs {
+/// What `raybench` measures: a mesh, a view and where to trace its rays.
+#[derive(Clone, Debug)]
+pub struct RaybenchConfig {
     /// The mesh file (.obj).
-    #[arg(long)]
     pub mesh: PathBuf,
     /// `auto` (the mesh's bounding box, seen from +z) or JSON
     /// `{"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"vfov":degrees}`.
-    #[arg(long, default_value = "auto")]
     pub camera: String,
     /// Image width in pixels (one primary ray per pixel).
-    #[arg(long, default_value_t = 1920)]
     pub width: u32,
     /// Image height in pixels.
-    #[arg(long, default_value_t = 1080)]
     pub height: u32,
     /// Where to trace.
-    #[arg(long, value_enum, default_value_t = RaybenchBackend::Cpu)]
     pub backend: RaybenchBackend,
     /// Timed repetitions of each ray set; the median is reported.
-    #[arg(long, default_value_t = 5)]
     pub reps: u32,
     /// Worker threads on the CPU, for the BVH build and CPU tracing (0: one per available
     /// CPU), each taking the next chunk of 1024 rays until none is left.
-    #[arg(long, default_value_t = 0)]
     pub threads: usize,
     /// Seed of the bounce directions.
-    #[arg(long, default_value_t = 1)]
     pub seed: u32,
     /// Split every triangle into four at its edge midpoints this many times before building:
     /// the same surface from 4^N times the triangles, for measuring how cost grows with
     /// triangle count at a fixed view (at most 6).
-    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=6))]
     pub subdivide: u32,
     /// Also write the triangles and the exact rays traced (both sets, with their t ranges
     /// and closest hits) to this file, in the binary format `scripts/embree/` reads.
-    #[arg(long)]
     pub dump_rays: Option<PathBuf>,
 }
 
@@ -152,14 +142,6 @@ impl CameraSpec {
     }
 }
 
-/// A ray and, after tracing, its closest hit (t, input triangle index).
-#[derive(Clone, Copy, Debug)]
-struct Cast {
-    origin: Vec3A,
-    dir: Vec3A,
-    hit: Option<(f32, u32)>,
-}
-
 /// The report line.
 #[derive(Debug, Serialize)]
 struct Report {
@@ -195,38 +177,6 @@ struct Report {
     primary_rays_per_s_reps: Vec<f64>,
     bounce_rays_per_s_reps: Vec<f64>,
     camera: CameraSpec,
-}
-
-/// The end of every ray's t range: rays hit on (T_MIN, T_MAX).
-const T_MAX: f32 = f32::INFINITY;
-
-/// Rays per task of the CPU's worker threads.
-const CHUNK: usize = 1024;
-
-/// Traces every cast `reps` times; returns rays per second of each repetition.
-///
-/// Every chunk of [`CHUNK`] rays is a task of its own (`with_max_len(1)`). Left to itself,
-/// rayon cut the bounce rays into a few long runs of chunks that cannot be split once
-/// started, and on two threads one thread then finished its last run alone: 8.6 % fewer
-/// bounce rays per second (bunny, same process, alternating; primary rays and one thread
-/// unchanged).
-fn trace_all(pool: &rayon::ThreadPool, bvh: &Bvh, casts: &mut [Cast], reps: u32) -> Vec<f64> {
-    (0..reps)
-        .map(|_| {
-            let start = Instant::now();
-            pool.install(|| {
-                casts
-                    .par_chunks_mut(CHUNK)
-                    .with_max_len(1)
-                    .for_each(|chunk| {
-                        for c in chunk {
-                            c.hit = bvh.closest(c.origin, c.dir, T_MAX);
-                        }
-                    })
-            });
-            casts.len() as f64 / start.elapsed().as_secs_f64()
-        })
-        .collect()
 }
 
 fn median(values: &[f64]) -> f64 {
@@ -285,7 +235,7 @@ fn bounce_casts(primary: &[Cast], corners: &[[Vec3; 3]], seed: u32) -> Vec<Cast>
         .collect()
 }
 
-pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
+pub fn run(args: &RaybenchConfig) -> anyhow::Result<()> {
     if args.width == 0 || args.height == 0 || args.reps == 0 {
         bail!("--width, --height and --reps must be at least 1");
     }
@@ -334,7 +284,7 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
         .collect();
     let mut timings = Vec::new();
     let primary_rates = match &mut tracer {
-        Tracer::Cpu => trace_all(&pool, &bvh, &mut primary, args.reps),
+        Tracer::Cpu => cast_all(&pool, &bvh, &mut primary, args.reps),
         Tracer::Gpu(caster) => {
             let outcome = caster.cast_primary(&frame, w, h, args.reps)?;
             take_hits(&mut primary, &outcome);
@@ -345,7 +295,7 @@ pub fn run(args: &RaybenchArgs) -> anyhow::Result<()> {
 
     let mut bounce = bounce_casts(&primary, &corners, args.seed);
     let bounce_rates = match &mut tracer {
-        Tracer::Cpu => trace_all(&pool, &bvh, &mut bounce, args.reps),
+        Tracer::Cpu => cast_all(&pool, &bvh, &mut bounce, args.reps),
         Tracer::Gpu(caster) => {
             let rays: Vec<GpuCastRay> = bounce
                 .iter()

@@ -2,29 +2,26 @@
 //! image against a reference, as one JSON line.
 
 use anyhow::{Context, Result, bail};
-use clap::Args;
 use serde_json::json;
 use std::path::{Path, PathBuf};
-use steadyray_quality::{PIXELS_PER_DEGREE, Rgb8Image, flip_at, psnr, ssim};
+use steadyray_quality::{Rgb8Image, flip_at, psnr, ssim};
 
-#[derive(Debug, Args)]
-pub struct CompareArgs {
+/// Two images to compare and where to write the comparison's pictures.
+#[derive(Clone, Debug)]
+pub struct CompareConfig {
     /// The reference image (any format the `image` crate reads; alpha is dropped).
     pub reference: PathBuf,
     /// The image to judge. A different size is brought to the reference's by a bilinear
     /// upscale (as a frame rendered at a reduced resolution scale is shown).
     pub test: PathBuf,
     /// Also write the FLIP error map (magma colours: black is no error) to this PNG.
-    #[arg(long, value_name = "PNG")]
     pub error_map: Option<PathBuf>,
     /// Also write the test image (upscaled), the reference and the FLIP error map side by
     /// side, in that order, to this PNG.
-    #[arg(long, value_name = "PNG")]
     pub side_by_side: Option<PathBuf>,
     /// FLIP's viewing condition: pixels of the reference per degree of visual angle as
     /// shown (the bench's displayed FLIP uses the standard FHD set-up's, 12.6 for a
     /// 640-pixel-wide frame filling the display).
-    #[arg(long, value_name = "PIXELS", default_value_t = PIXELS_PER_DEGREE)]
     pub ppd: f32,
 }
 
@@ -70,7 +67,7 @@ pub fn save_rgb8(image: &Rgb8Image, path: &Path) -> Result<()> {
 }
 
 /// Compares the two images and prints `{"flip":..,"psnr":..,"ssim":..,...}`.
-pub fn run(args: &CompareArgs) -> Result<()> {
+pub fn run(args: &CompareConfig) -> Result<()> {
     if !(args.ppd.is_finite() && args.ppd > 0.0) {
         bail!(
             "--ppd must be a positive number of pixels per degree, not {}",

@@ -2,14 +2,14 @@
 //! path (rays, time, FLIP against a high-quality reference) and writes their Pareto front as
 //! a ladder (`ladder.json`, format in `steadyray_control::ladder`) for `predictive`'s
 //! `ladder=FILE` option. With `--motion` it measures the quality model of `perceptual`
-//! instead ([`crate::commands::calibrate_motion`]).
+//! instead ([`crate::calibrate_motion`]).
 
 use crate::backend::create_renderer;
 use crate::bench::quality::shown;
-use crate::cli::SceneArgs;
-use crate::commands::calibrate_motion::{JodTool, MotionPlan, calibrate_motion, stimulus_count};
+use crate::calibrate_motion::{JodTool, MotionPlan, calibrate_motion, stimulus_count};
+use crate::config::SceneConfig;
+use crate::frame_loop::FrameLoop;
 use anyhow::{Context, Result, bail};
-use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::Path;
 use std::path::PathBuf;
@@ -17,121 +17,81 @@ use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
 use steadyray_control::{MotionModel, Quality};
 use steadyray_quality::{Rgb8Image, flip};
 use steadyray_render::sample_stream::check_reference_spp;
-use steadyray_render::{
-    RenderSettings, Renderer, SampleStream, TemporalSettings, check_image_size,
-};
+use steadyray_render::{Renderer, SampleStream, TemporalSettings, check_image_size};
 use steadyray_scene::Scene;
 
-#[derive(Debug, Args)]
-pub struct CalibrateArgs {
-    #[command(flatten)]
-    pub scene: SceneArgs,
+/// What `calibrate` measures: the settings tried over views of the camera path for a
+/// ladder, or (`motion`) the stimuli of the perceptual quality model.
+#[derive(Clone, Debug)]
+pub struct CalibrateConfig {
+    pub scene: SceneConfig,
     /// Views of the camera path to measure, evenly spaced (default 8; with --motion, 2).
-    #[arg(long)]
     pub views: Option<u32>,
     /// Frames in the camera path the views are taken from (as `bench --frames`).
-    #[arg(long, default_value_t = 720)]
     pub frames: u32,
     /// Full-scale image width (use the size you will bench at: FLIP's verdicts change with
     /// it; the default is `bench`'s on the CPU).
-    #[arg(long, default_value_t = 640)]
     pub width: u32,
     /// Full-scale image height.
-    #[arg(long, default_value_t = 360)]
     pub height: u32,
     /// Eye rays per pixel S to try, comma separated. Fractional values matter: at 640x360
     /// the corridor's front holds S = 1.25 and 1.5 but not 1.75 or 2, which cost more and
     /// score no better.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "1,1.25,1.5,2,2.5,3,4,8,16"
-    )]
     pub spp: Vec<f32>,
     /// Reflection depths R to try, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "0,1,2,3,4,6,8,12,16")]
     pub depths: Vec<u32>,
     /// Resolution scales to try, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "0.5,0.75,1")]
     pub scales: Vec<f32>,
     /// The reference's eye rays per pixel S (full scale, at least 2; it draws samples no
     /// measured setting draws). The reference setting itself is
     /// also a point of the ladder (FLIP 0), so the ladder reaches the highest quality.
     /// Default 256; with --motion, where a reference is rendered per refresh, 16 (as the
     /// real clock's bench).
-    #[arg(long)]
     pub reference_spp: Option<f32>,
     /// The reference's reflection depth R.
-    #[arg(long, default_value_t = 16)]
     pub reference_depth: u32,
     /// Where to write the ladder (default ladder.json; with --motion, motion.json).
-    #[arg(short = 'o', long = "out")]
     pub out: Option<PathBuf>,
     /// Measure the quality model of the `perceptual` controller instead of a ladder: short
     /// stimuli over a grid of screen speeds, frame times and points of --ladder, scored by
     /// displayed FLIP (and by JOD with --jod); written as motion.json.
-    #[arg(long)]
     pub motion: bool,
     /// With --motion: the calibrated ladder whose points are scored.
-    #[arg(long, requires = "motion", value_name = "FILE")]
     pub ladder: Option<PathBuf>,
     /// With --motion: how many of the ladder's points to score, spread evenly by cost
     /// (0: all).
-    #[arg(long, requires = "motion", default_value_t = 5)]
     pub points: usize,
     /// With --motion: screen speeds, degrees of visual angle per second, comma separated.
-    #[arg(
-        long,
-        requires = "motion",
-        value_delimiter = ',',
-        default_value = "0,8,32,96"
-    )]
     pub speeds: Vec<f64>,
     /// With --motion: frame times, in refreshes of the display, comma separated.
-    #[arg(
-        long,
-        requires = "motion",
-        value_delimiter = ',',
-        default_value = "1,2,3"
-    )]
     pub refreshes: Vec<u32>,
     /// With --motion: the display's refresh rate, Hz.
-    #[arg(long, requires = "motion", default_value_t = 60.0)]
     pub refresh: f64,
     /// With --motion: each stimulus's length, seconds.
-    #[arg(long, requires = "motion", default_value_t = 0.5)]
     pub stimulus: f64,
     /// With --motion: show the stimuli as `bench --temporal on --warp` does (frames
     /// accumulated into a temporal history, each refresh between two frames the last frame
     /// warped to its time), so the table scores long frames with their age warped away;
     /// score the points of a ladder from `calibrate --temporal`.
-    #[arg(long, requires = "motion")]
     pub warp: bool,
     /// With --motion: write each stimulus's screen and reference videos into DIR (one
     /// folder per view and speed, in the layout of `bench --video`).
-    #[arg(long, requires = "motion", value_name = "DIR")]
     pub video: Option<PathBuf>,
     /// With --video: score the videos with the JOD tool (ColorVideoVDP, scripts/jod/jod.py)
     /// and fill the table with JOD; the displayed-FLIP table is written beside it
     /// (`<out>-flip.json`). A folder already scored (its jod.json) is not scored again.
-    #[arg(long, requires = "video")]
     pub jod: bool,
     /// With --jod: the Python that runs the JOD tool (with scripts/jod/requirements.txt).
-    #[arg(long, requires = "jod", default_value = "python3")]
     pub python: String,
     /// With --jod: the JOD tool.
-    #[arg(long, requires = "jod", default_value = "scripts/jod/jod.py")]
     pub jod_script: PathBuf,
     /// With --jod: keep every video once scored (else only video.json and jod.json stay).
-    #[arg(long, requires = "jod")]
     pub keep_video: bool,
     /// Calibrate for the temporal mode (docs/temporal.md): each setting renders FRAMES frames
     /// leading up to each view (1/--rate s apart on the path) into a history and is measured
     /// on it, so the ladder ranks the settings by what they look like with history.
-    #[arg(long, value_name = "FRAMES", conflicts_with = "motion")]
     pub temporal: Option<u32>,
     /// With --temporal: frames per second of the frames leading up to each view.
-    #[arg(long, default_value_t = 60.0, requires = "temporal")]
     pub rate: f64,
 }
 
@@ -191,20 +151,15 @@ fn measure(
     temporal: Option<(u32, f64)>,
 ) -> Result<Sample> {
     let time_s = scene.path.frame_time(k, plan.frames);
-    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
-    let settings = RenderSettings {
-        width: side(plan.width),
-        height: side(plan.height),
-        spp,
-        max_depth: depth,
-    };
+    let mut frame_loop = FrameLoop::new((plan.width, plan.height));
+    let quality = Quality::new(spp, depth, scale);
     let history = TemporalSettings {
         width: plan.width,
         height: plan.height,
     };
     renderer.set_temporal(temporal.map(|_| history))?;
     let (frames, rate) = temporal.unwrap_or((1, 1.0));
-    let mut stats = None;
+    let mut frame = None;
     for i in 0..frames {
         let t = time_s - f64::from(frames - 1 - i) / rate;
         let camera = if i + 1 == frames {
@@ -212,17 +167,17 @@ fn measure(
         } else {
             scene.camera_at_time(t)
         };
-        stats = Some(
-            renderer
-                .render(&camera, t, &settings)
+        frame = Some(
+            frame_loop
+                .render(renderer, &camera, t, quality)
                 .with_context(|| format!("frame {k} at S={spp} R={depth} scale={scale}"))?,
         );
     }
-    let stats = stats.context("no frame rendered")?;
+    let frame = frame.context("no frame rendered")?;
     let image = shown(&renderer.read_image()?, plan.width, plan.height)?;
     Ok(Sample {
-        rays: stats.rays.total() as f64,
-        ms: stats.render_ms,
+        rays: frame.stats.rays.total() as f64,
+        ms: frame.report.tp_ms,
         image,
     })
 }
@@ -303,7 +258,7 @@ pub fn calibrate(
 
 /// Runs the calibration, prints the front and writes the ladder (or, with `--motion`, the
 /// quality model).
-pub fn run(args: &CalibrateArgs) -> Result<()> {
+pub fn run(args: &CalibrateConfig) -> Result<()> {
     let scene = args.scene.load()?;
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
@@ -359,7 +314,7 @@ fn write_json(value: &impl serde::Serialize, path: &Path) -> Result<()> {
 }
 
 /// `calibrate --motion`: measures, prints and writes the quality model.
-fn run_motion(args: &CalibrateArgs, renderer: &mut dyn Renderer, scene: &Scene) -> Result<()> {
+fn run_motion(args: &CalibrateConfig, renderer: &mut dyn Renderer, scene: &Scene) -> Result<()> {
     let ladder_path = args
         .ladder
         .as_ref()

@@ -1,6 +1,7 @@
 //! Where the experiment's frames come from: a real renderer over the scene's camera path, or
 //! the control crate's simulated renderer on a fake clock (`bench --simulate`).
 
+use crate::frame_loop::{FrameLoop, LoopFrame};
 use anyhow::{Result, bail};
 use std::f64::consts::TAU;
 use std::time::Instant;
@@ -8,9 +9,7 @@ use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
 use steadyray_motion::{MotionTracker, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{
-    Picture, Presented, RenderSettings, Renderer, SampleStream, TemporalSettings,
-};
+use steadyray_render::{Picture, Presented, Renderer, SampleStream, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
 /// One rendered (or simulated) frame as the experiment sees it.
@@ -103,18 +102,12 @@ pub const SIM_HAND_OVER_MS: f64 = 1.0;
 /// The simulated renderer's cost of a warped refresh, ms.
 pub const SIM_WARP_MS: f64 = 0.5;
 
-/// The image size for a resolution scale: each side scaled and rounded, at least 1 pixel.
-pub fn scaled_size(width: u32, height: u32, scale: f32) -> (u32, u32) {
-    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
-    (side(width), side(height))
-}
-
 /// Frames from a real renderer.
 pub struct RendererSource {
     pub renderer: Box<dyn Renderer>,
     pub scene: Scene,
-    pub width: u32,
-    pub height: u32,
+    /// Renders the frames at the full-scale size and says which time the controller sees.
+    pub frame_loop: FrameLoop,
     /// Measures each frame's motion on screen since the frame rendered before it (outside
     /// the render's time).
     pub motion: MotionTracker,
@@ -127,7 +120,7 @@ impl FrameSource for RendererSource {
     }
 
     fn resolution(&self) -> (u32, u32) {
-        (self.width, self.height)
+        self.frame_loop.full_size()
     }
 
     fn path_duration_s(&self) -> f64 {
@@ -142,10 +135,10 @@ impl FrameSource for RendererSource {
             PathPoint::Time { t_s, .. } => (self.scene.camera_at_time(t_s), t_s),
         };
         let mut measured = render_measured(
+            &mut self.frame_loop,
             self.renderer.as_mut(),
             &camera,
             time_s,
-            (self.width, self.height),
             q,
         )?;
         measured.speed = self.motion.next(Shot::at(camera, time_s))?;
@@ -187,7 +180,7 @@ impl FrameSource for RendererSource {
     }
 
     fn set_temporal(&mut self, on: bool) -> Result<()> {
-        set_history(self.renderer.as_mut(), (self.width, self.height), on)
+        set_history(self.renderer.as_mut(), self.frame_loop.full_size(), on)
     }
 
     fn set_sample_stream(&mut self, stream: SampleStream) {
@@ -230,39 +223,33 @@ fn rgb8(picture: Picture) -> Result<Rgb8Image> {
     )?)
 }
 
-/// Renders `camera` at scene time `time_s` at quality `q` (the `full` size scaled by
-/// `q.scale`) and measures it: no motion on screen yet (the caller measures it).
+/// Renders `camera` at scene time `time_s` at quality `q` through `frame_loop` (its
+/// full-scale size scaled by `q.scale`, the controller's time by its rule) and measures it:
+/// no motion on screen yet (the caller measures it).
 pub fn render_measured(
+    frame_loop: &mut FrameLoop,
     renderer: &mut dyn Renderer,
     camera: &Camera,
     time_s: f64,
-    (width, height): (u32, u32),
     q: Quality,
 ) -> Result<Measured> {
-    let (width, height) = scaled_size(width, height, q.scale);
-    let settings = RenderSettings {
-        width,
-        height,
-        spp: q.spp,
-        max_depth: q.depth,
-    };
-    let stats = renderer.render(camera, time_s, &settings)?;
-    let f = camera.forward;
-    Ok(Measured {
-        report: FrameReport {
-            tp_ms: stats.render_ms,
-            rays_per_depth: stats.rays.per_depth,
-            shadow_rays: stats.rays.shadow,
-            rays_stopped: Some(stats.rays.stopped),
-            pixels: settings.pixels(),
-            quality: q,
-            speed_deg_s: 0.0,
-        },
-        wall_ms: stats.wall_ms,
-        accel_ms: stats.accel_ms,
-        angle: (-f.x).atan2(-f.z).rem_euclid(std::f32::consts::TAU),
-        speed: ScreenSpeed::default(),
-    })
+    let frame = frame_loop.render(renderer, camera, time_s, q)?;
+    Ok(Measured::of(frame, camera))
+}
+
+impl Measured {
+    /// The bench's measurement of a frame of the loop, which showed `camera`: the report
+    /// the controller sees, the render call's wall time and the BVH's share of Tp.
+    pub fn of(frame: LoopFrame, camera: &Camera) -> Self {
+        let f = camera.forward;
+        Self {
+            report: frame.report,
+            wall_ms: frame.stats.wall_ms,
+            accel_ms: frame.stats.accel_ms,
+            angle: (-f.x).atan2(-f.z).rem_euclid(std::f32::consts::TAU),
+            speed: ScreenSpeed::default(),
+        }
+    }
 }
 
 /// Turns the temporal mode of `renderer` on (a new history of `full` pixels) or off.
@@ -386,8 +373,7 @@ mod tests {
         RendererSource {
             renderer: Box::new(renderer),
             scene,
-            width: 64,
-            height: 36,
+            frame_loop: FrameLoop::new((64, 36)),
             motion: MotionTracker::new(probe),
         }
     }
@@ -414,5 +400,45 @@ mod tests {
         );
         source.renderer.set_sample_stream(SampleStream::Reference);
         assert!(frame(&mut source) == reference, "not the reserved samples");
+    }
+
+    /// The window renders through [`FrameLoop::render`] and shows its controller the loop's
+    /// report; the bench measures the same frame as [`Measured::of`] it. Over the same frame
+    /// stats, implausible GPU timestamps included, both give the controller the same Tp.
+    #[test]
+    fn the_window_and_the_bench_give_a_controller_the_same_tp() {
+        use steadyray_render::{FrameStats, TimingSource};
+        let stats = |render_ms, wall_ms, timing| FrameStats {
+            render_ms,
+            accel_ms: 0.0,
+            wall_ms,
+            timing,
+            rays: Default::default(),
+            width: 64,
+            height: 36,
+            samples: 1,
+        };
+        let gpu = TimingSource::GpuTimestamps;
+        let readings = [
+            stats(16.0, 17.5, gpu),
+            stats(0.3, 72.0, gpu),
+            stats(16.0, 17.5, gpu),
+            stats(40.0, 41.0, TimingSource::WallClock),
+        ];
+        let camera = builtin("corridor").unwrap().camera;
+        let q = Quality::new(1.0, 4, 1.0);
+        let (mut window, mut bench) = (FrameLoop::new((64, 36)), FrameLoop::new((64, 36)));
+        let mut seen = Vec::new();
+        for s in readings {
+            let settings = window.settings(q);
+            let window_tp = window.frame(s.clone(), settings, q).report.tp_ms;
+            let bench_tp = Measured::of(bench.frame(s, settings, q), &camera)
+                .report
+                .tp_ms;
+            assert_eq!(window_tp, bench_tp);
+            seen.push(bench_tp);
+        }
+        // The lavapipe reading and every GPU reading after it give the wall time.
+        assert_eq!(seen, [16.0, 72.0, 17.5, 40.0]);
     }
 }

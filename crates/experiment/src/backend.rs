@@ -1,6 +1,6 @@
 //! Choosing and creating a renderer backend.
 
-use crate::cli::BackendChoice;
+use crate::config::BackendChoice;
 use anyhow::{Context, Result, bail};
 use steadyray_render::Renderer;
 use steadyray_render_cpu::CpuRenderer;

@@ -28,6 +28,7 @@ use crate::bench::source::{
     warp_measured,
 };
 use crate::bench::video::{self, ReferenceKey, VideoIndex, VideoRun};
+use crate::frame_loop::FrameLoop;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
@@ -184,8 +185,8 @@ struct StimulusSource<'a> {
     renderer: &'a mut dyn Renderer,
     turn: Turn,
     world_s: f64,
-    width: u32,
-    height: u32,
+    /// Renders the frames at the plan's size and says which time the controller sees.
+    frame_loop: FrameLoop,
     duration_s: f64,
 }
 
@@ -196,7 +197,7 @@ impl FrameSource for StimulusSource<'_> {
     }
 
     fn resolution(&self) -> (u32, u32) {
-        (self.width, self.height)
+        self.frame_loop.full_size()
     }
 
     fn path_duration_s(&self) -> f64 {
@@ -212,10 +213,10 @@ impl FrameSource for StimulusSource<'_> {
         // The world stands still at the view's time; the stimulus's motion is the camera's
         // turn, known, not measured.
         render_measured(
+            &mut self.frame_loop,
             &mut *self.renderer,
             &camera,
             self.world_s,
-            (self.width, self.height),
             q,
         )
     }
@@ -241,7 +242,7 @@ impl FrameSource for StimulusSource<'_> {
     }
 
     fn set_temporal(&mut self, on: bool) -> Result<()> {
-        set_history(&mut *self.renderer, (self.width, self.height), on)
+        set_history(&mut *self.renderer, self.frame_loop.full_size(), on)
     }
 
     fn last_picture(&mut self) -> Result<Option<Rgb8Image>> {
@@ -526,8 +527,7 @@ impl Stimulus {
             renderer,
             turn: Turn::new(self.camera, self.rate, 0.5 * plan.stimulus_s),
             world_s: self.view_s,
-            width: plan.width,
-            height: plan.height,
+            frame_loop: FrameLoop::new((plan.width, plan.height)),
             duration_s: plan.stimulus_s,
         };
         progress.set_message(format!(
