@@ -24,6 +24,7 @@ use steadyray_scene::Scene;
 /// ladder, or (`motion`) the stimuli of the perceptual quality model.
 #[derive(Clone, Debug)]
 pub struct CalibrateConfig {
+    /// The scene and its renderer.
     pub scene: SceneConfig,
     /// Views of the camera path to measure, evenly spaced (default 8; with --motion, 2).
     pub views: Option<u32>,
@@ -98,13 +99,21 @@ pub struct CalibrateConfig {
 /// What to measure: the grid of settings, the views and the reference.
 #[derive(Clone, Debug)]
 pub struct Plan {
+    /// Full-scale image width.
     pub width: u32,
+    /// Full-scale image height.
     pub height: u32,
+    /// Frames in the camera path the views are taken from.
     pub frames: u32,
+    /// Views measured, evenly spaced.
     pub views: u32,
+    /// Eye rays per pixel S to try.
     pub spp: Vec<f32>,
+    /// Reflection depths R to try.
     pub depths: Vec<u32>,
+    /// Resolution scales to try.
     pub scales: Vec<f32>,
+    /// The reference's setting.
     pub reference: Reference,
     /// The temporal mode's frames before each view and their rate (frames per second).
     pub temporal: Option<(u32, f64)>,

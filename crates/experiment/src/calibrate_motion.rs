@@ -49,7 +49,9 @@ use steadyray_scene::{Camera, Scene};
 /// What to measure.
 #[derive(Clone, Debug)]
 pub struct MotionPlan {
+    /// Image width.
     pub width: u32,
+    /// Image height.
     pub height: u32,
     /// The ladder the points come from.
     pub ladder: Ladder,
@@ -59,11 +61,13 @@ pub struct MotionPlan {
     pub speeds: Vec<f64>,
     /// Frame times in refreshes, strictly rising.
     pub refreshes: Vec<u32>,
+    /// The display's refresh rate, Hz.
     pub refresh_hz: f64,
     /// Each stimulus's length, s.
     pub stimulus_s: f64,
     /// Views of the path the stimuli turn around, evenly spaced in time.
     pub views: u32,
+    /// The references' quality.
     pub reference: Quality,
     /// Where to write the stimuli's videos, for the JOD tool.
     pub video: Option<PathBuf>,
@@ -85,7 +89,9 @@ impl MotionPlan {
 /// The JOD tool and what to keep of the videos it scored.
 #[derive(Clone, Debug)]
 pub struct JodTool {
+    /// The Python that runs the tool.
     pub python: String,
+    /// The JOD tool's script.
     pub script: PathBuf,
     /// Keep every video (else only `video.json` and `jod.json` stay once scored).
     pub keep_video: bool,
@@ -639,7 +645,9 @@ fn write_atomically(path: &Path, text: &str) -> Result<()> {
 /// The measured model: JOD when the JOD tool ran, else displayed FLIP; with JOD, the FLIP
 /// table is returned beside it.
 pub struct MotionTables {
+    /// The model as scored (by JOD with the JOD tool, else by displayed FLIP).
     pub model: MotionModel,
+    /// The displayed-FLIP model beside a JOD one.
     pub flip: Option<MotionModel>,
 }
 

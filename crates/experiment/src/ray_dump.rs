@@ -44,11 +44,17 @@ pub const NO_HIT: u32 = u32::MAX;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct DumpRay {
+    /// Where the ray starts.
     pub origin: [f32; 3],
+    /// Its direction.
     pub dir: [f32; 3],
+    /// The start of its t range.
     pub t_min: f32,
+    /// The end of its t range.
     pub t_max: f32,
+    /// The closest hit's t (NaN for a miss).
     pub hit_t: f32,
+    /// The closest hit's triangle (`u32::MAX` for a miss).
     pub hit_triangle: u32,
 }
 
@@ -76,6 +82,7 @@ impl DumpRay {
 pub struct RaySet<'a> {
     /// At most 16 ASCII bytes.
     pub name: &'static str,
+    /// The rays.
     pub rays: &'a [DumpRay],
 }
 

@@ -235,6 +235,7 @@ fn bounce_casts(primary: &[Cast], corners: &[[Vec3; 3]], seed: u32) -> Vec<Cast>
         .collect()
 }
 
+/// Measures the ray-casting throughput `args` asks for and prints it as one JSON line.
 pub fn run(args: &RaybenchConfig) -> anyhow::Result<()> {
     if args.width == 0 || args.height == 0 || args.reps == 0 {
         bail!("--width, --height and --reps must be at least 1");

@@ -133,6 +133,7 @@ impl TimedReferences {
 pub struct ScreenSample {
     /// The sample's number: it is at `index`·P.
     pub index: usize,
+    /// The refresh's time on the display, s.
     pub time_s: f64,
     /// The frame on screen; `None`: the last warm-up frame.
     pub frame: Option<usize>,
@@ -214,6 +215,7 @@ pub fn screen_picture(
 /// One sampled refresh against the references (a row of `displayed.csv`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScoredSample {
+    /// Where and when the screen was sampled.
     pub sample: ScreenSample,
     /// FLIP of the screen against the world at the refresh.
     pub flip: f64,
@@ -228,6 +230,7 @@ pub struct ScoredSample {
 pub struct DisplayedQuality {
     /// Mean and 95th percentile of FLIP of the screen against the world at the refresh.
     pub flip_mean: f64,
+    /// The 95th percentile of the samples' FLIP.
     pub flip_p95: f64,
     /// Mean FLIP of the screen against the world at the time its frame shows: the picture's
     /// own error, without its age.

@@ -15,7 +15,9 @@ pub struct Sweep {
     pub frames: u32,
     /// Frames rendered (and shown to the controller) at the first view before counting.
     pub warmup: u32,
+    /// The frame-time band.
     pub band: Band,
+    /// The quality knobs' bounds.
     pub bounds: Bounds,
 }
 

@@ -6,9 +6,13 @@ use std::process::Command;
 /// The machine a benchmark ran on.
 #[derive(Clone, Debug, Serialize)]
 pub struct Machine {
+    /// The host name.
     pub hostname: String,
+    /// The CPU's model name.
     pub cpu: String,
+    /// Hardware threads available.
     pub threads: usize,
+    /// Operating system and architecture.
     pub os: String,
 }
 

@@ -56,6 +56,7 @@ use steadyray_render::check_image_size;
 /// controllers, the clock, the display, what is measured and kept, and where the reports go.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BenchConfig {
+    /// The scene and its renderer.
     pub scene: SceneConfig,
     /// Frames in the sweep (frame k has yaw 2π·k/frames).
     pub frames: u32,
@@ -86,6 +87,7 @@ pub struct BenchConfig {
     pub out: PathBuf,
     /// Use the simulated renderer (a cost model on a fake clock) instead of a real one.
     pub simulate: bool,
+    /// The bounds of the quality knobs.
     pub bounds: BoundsConfig,
     /// R of the paper's fixed baseline and of every controller's start (default: the
     /// largest R). S starts at its minimum and the scale at its maximum.
@@ -119,6 +121,7 @@ pub struct BenchConfig {
     /// With --clock real: seconds of display time per run (default: the path's length, its
     /// frames at 60 per second).
     pub duration: Option<f64>,
+    /// The display model's settings (real clock).
     pub display: DisplaySettings,
     /// The temporal mode (docs/temporal.md): `off`, `on` (every run accumulates its frames
     /// into a full-resolution history, the pass inside Tp), or `both` (every controller runs

@@ -21,6 +21,7 @@ use steadyray_quality::Rgb8Image;
 /// What every real-clock run follows.
 #[derive(Clone, Copy, Debug)]
 pub struct RealSweep {
+    /// The display model.
     pub display: DisplayConfig,
     /// Display time per run, s.
     pub duration_s: f64,
@@ -30,7 +31,9 @@ pub struct RealSweep {
     /// camera as in the run; the last of them is on screen until the run's first frame
     /// replaces it.
     pub warmup: u32,
+    /// The frame-time band.
     pub band: Band,
+    /// The quality knobs' bounds.
     pub bounds: Bounds,
     /// Whether a refresh whose frame on screen rendered the world of another time shows
     /// that frame warped to the refresh's camera (`bench --warp`, `Renderer::present_warped`):
@@ -92,7 +95,9 @@ impl Keep {
 /// A real-clock run as the viewer saw it.
 #[derive(Clone, Debug)]
 pub struct DisplayRun {
+    /// When each frame was shown, refresh by refresh.
     pub timeline: Timeline,
+    /// What the viewer saw, in figures.
     pub figures: DisplayFigures,
     /// The pictures (tone-mapped, at their rendered size) of the frames on screen at the kept
     /// samples, by frame; `None` is the last warm-up frame, on screen before the first.

@@ -13,14 +13,18 @@ use steadyray_quality::Rgb8Image;
 /// One counted frame of one controller's sweep (a row of `frames.csv`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrameRow {
+    /// The frame's index in the run.
     pub frame: u32,
     /// Camera yaw in radians.
     pub angle: f32,
     /// The path's time the frame shows, s (frame clock: k/N of the path's length; real
     /// clock: the frame's predicted display time).
     pub t_s: f64,
+    /// Eye rays per pixel S.
     pub spp: f32,
+    /// Reflection depth R.
     pub depth: u32,
+    /// Resolution scale.
     pub scale: f32,
     /// Tp, the render time, ms.
     pub tp_ms: f64,
@@ -33,6 +37,7 @@ pub struct FrameRow {
     pub accel_ms: f64,
     /// Rays traced (every depth and shadow rays).
     pub rays: u64,
+    /// Whether Tp lay in the band.
     pub in_band: bool,
     /// Mean FLIP against the reference, for the frames `bench --quality` measured.
     pub flip: Option<f64>,
@@ -40,6 +45,7 @@ pub struct FrameRow {
     pub display: Option<FrameTimes>,
     /// Its motion on screen, degrees of visual angle per second: mean and 95th percentile.
     pub speed_mean: f64,
+    /// The 95th percentile of the motion on screen, deg/s.
     pub speed_p95: f64,
     /// The frame time the controller aimed this frame at, ms (`perceptual` only).
     pub target_ms: Option<f64>,
@@ -79,7 +85,9 @@ pub struct ControllerRun {
     pub name: String,
     /// The band it ran in.
     pub band: Band,
+    /// One row per counted frame.
     pub rows: Vec<FrameRow>,
+    /// The run's figures.
     pub summary: RunSummary,
     /// Mean and 95th percentile of the measured frames' FLIP (`bench --quality`).
     pub flip: Option<(f64, f64)>,

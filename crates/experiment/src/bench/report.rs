@@ -12,21 +12,33 @@ use steadyray_display::{DisplayConfig, DisplayFigures, ViewingSetup};
 
 /// The paper's reported figures, for comparison in every report.
 pub const PAPER_IN_BAND_FIXED_PCT: f64 = 8.7;
+/// The paper's in-band share with step control, %.
 pub const PAPER_IN_BAND_CONTROLLED_PCT: f64 = 93.9;
 
 /// Everything `summary.json` holds besides the per-controller figures.
 #[derive(Debug, Serialize)]
 pub struct RunContext {
+    /// The scene's name.
     pub scene: String,
+    /// The backend.
     pub backend: String,
+    /// The device.
     pub device: String,
+    /// The machine the bench ran on.
     pub machine: Machine,
+    /// Full-scale image size.
     pub resolution: [u32; 2],
+    /// The band, ms.
     pub band_ms: [f64; 2],
+    /// Frames in the sweep.
     pub frames: u32,
+    /// Warm-up frames per run.
     pub warmup: u32,
+    /// The quality bounds, as text.
     pub bounds: String,
+    /// The start quality, as text.
     pub start: String,
+    /// The source revision.
     pub git_revision: String,
     /// `frames` or `real`.
     pub clock: &'static str,
@@ -43,6 +55,7 @@ pub struct RunContext {
 pub struct RealContext {
     /// Display time per run, s.
     pub duration_s: f64,
+    /// The display model.
     pub display: DisplayConfig,
     /// The viewing set-up of displayed FLIP and JOD.
     pub viewing: ViewingSetup,

@@ -40,9 +40,19 @@ pub struct HandOver {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PathPoint {
     /// Frame `k` of an `n`-frame sweep (the frame clock, the paper's protocol).
-    Frame { k: u32, n: u32 },
+    Frame {
+        /// The frame's index.
+        k: u32,
+        /// Frames in the sweep.
+        n: u32,
+    },
     /// The path at `t_s` seconds (the real clock); `index` numbers the frame in its run.
-    Time { index: usize, t_s: f64 },
+    Time {
+        /// The frame's index in its run.
+        index: usize,
+        /// The path's time, s.
+        t_s: f64,
+    },
 }
 
 /// A source of frames at any quality along a fixed camera path.
@@ -104,7 +114,9 @@ pub const SIM_WARP_MS: f64 = 0.5;
 
 /// Frames from a real renderer.
 pub struct RendererSource {
+    /// The renderer drawing the frames.
     pub renderer: Box<dyn Renderer>,
+    /// The scene, with its camera path.
     pub scene: Scene,
     /// Renders the frames at the full-scale size and says which time the controller sees.
     pub frame_loop: FrameLoop,
@@ -264,6 +276,7 @@ pub fn set_history(
 
 /// Frames from the simulated renderer: a cost model driven by the corridor-shaped load.
 pub struct SimulatedSource {
+    /// The simulated renderer.
     pub renderer: SimRenderer,
     /// Frames of the sweep: the path lasts frames / 60 s.
     pub frames: u32,

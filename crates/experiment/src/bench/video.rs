@@ -275,14 +275,23 @@ pub fn write_run(
 /// What a reference folder holds: a later bench reuses it when all of this matches.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceKey {
+    /// The scene's name.
     pub scene: String,
+    /// The backend.
     pub backend: String,
+    /// The device.
     pub device: String,
+    /// Full-scale image size.
     pub resolution: [u32; 2],
+    /// The refresh rate, Hz.
     pub refresh_hz: f64,
+    /// Refreshes in the video.
     pub refreshes: usize,
+    /// The reference's eye rays per pixel S.
     pub spp: f32,
+    /// The reference's depth R.
     pub depth: u32,
+    /// The source revision that rendered it.
     pub git_revision: String,
 }
 
@@ -364,14 +373,21 @@ pub fn write_references(
 /// `video.json`: what the folder holds, for the JOD tool.
 #[derive(Debug, Serialize)]
 pub struct VideoIndex {
+    /// The scene's name.
     pub scene: String,
+    /// The refresh rate, Hz.
     pub refresh_hz: f64,
+    /// Refreshes in each video.
     pub refreshes: usize,
+    /// Full-scale image size.
     pub resolution: [u32; 2],
+    /// Display time per run, s.
     pub duration_s: f64,
+    /// The display model.
     pub display: DisplayConfig,
     /// The viewing set-up every metric assumes.
     pub viewing: ViewingSetup,
+    /// The shared reference.
     pub reference: ReferenceKey,
     /// Each run's name and folder, in the order of summary.json.
     pub runs: Vec<VideoRun>,
@@ -380,7 +396,9 @@ pub struct VideoIndex {
 /// One run of `video.json`.
 #[derive(Debug, Serialize)]
 pub struct VideoRun {
+    /// The run's name in reports.
     pub name: String,
+    /// Its folder, relative to the video folder.
     pub folder: String,
 }
 
