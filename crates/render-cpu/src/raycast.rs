@@ -26,7 +26,7 @@ pub struct Cast {
 /// Traces every cast `reps` times on `pool`'s threads, leaving each its closest hit;
 /// returns rays per second of each repetition.
 ///
-/// Every chunk of [`CHUNK`] rays is a task of its own (`with_max_len(1)`). Left to itself,
+/// Every chunk of `CHUNK` rays is a task of its own (`with_max_len(1)`). Left to itself,
 /// rayon cut the bounce rays into a few long runs of chunks that cannot be split once
 /// started, and on two threads one thread then finished its last run alone: 8.6 % fewer
 /// bounce rays per second (bunny, same process, alternating; primary rays and one thread

@@ -90,7 +90,7 @@ fn median_after_warm_up(
 }
 
 /// The median hand-over cost of `frames` frames at the path's start at quality `q`, ms
-/// ([`median_after_warm_up`]).
+/// (`median_after_warm_up`).
 pub fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) -> Result<f64> {
     median_after_warm_up(frames, "hand-over", |_| {
         source.frame(PathPoint::Time { index: 0, t_s: 0.0 }, q)?;
@@ -98,7 +98,7 @@ pub fn measure_hand_over(source: &mut dyn FrameSource, q: Quality, frames: u32) 
     })
 }
 
-/// The median cost of a warped refresh, ms ([`median_after_warm_up`]): frames at quality
+/// The median cost of a warped refresh, ms (`median_after_warm_up`): frames at quality
 /// `q` from the path's start, one refresh (`period_s`) apart, accumulated into a history
 /// (moving, so that each resamples it, as in a run), each handed over and then warped to
 /// the camera of the next refresh; the temporal mode is off again afterwards.

@@ -48,7 +48,7 @@ pub struct RealSweep {
 /// The most warps of the frame on screen made before the next frame renders. The bench works
 /// in turn, so it cannot know yet how many refreshes that frame will leave without a new
 /// frame: it makes those the frame would leave if it took as long as the last one, and one
-/// more ([`warps_to_make`]); a frame slower than that leaves the refreshes after them
+/// more (`warps_to_make`); a frame slower than that leaves the refreshes after them
 /// unwarped, counted as missed.
 pub const WARPS_AHEAD: usize = 4;
 
@@ -135,7 +135,7 @@ pub struct Warps {
     /// What each warp shown cost, ms.
     pub ms: Vec<f64>,
     /// Refreshes shown unwarped that should have been warped: without a new frame, beyond
-    /// the warps made ahead for them ([`warps_to_make`]) or whose warp would have cost the next frame its
+    /// the warps made ahead for them (`warps_to_make`) or whose warp would have cost the next frame its
     /// refresh, or a frame's first showing whose warp did not fit before its refresh.
     pub missed: usize,
 }
