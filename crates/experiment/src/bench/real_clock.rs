@@ -298,6 +298,47 @@ struct OnScreen {
     picture: Option<Rgb8Image>,
 }
 
+/// What the warm-up frames leave: the last of them on screen, the world time it showed and
+/// how long it kept the machine busy, ms.
+struct WarmUp {
+    screen: OnScreen,
+    lead_in_world_s: f64,
+    last_busy_ms: f64,
+}
+
+/// The warm-up frames: one refresh apart on the path's time up to its start, each shown to
+/// the controller and handed over, the clock told what each took.
+fn warm_up(
+    source: &mut dyn FrameSource,
+    controller: &mut dyn Controller,
+    sweep: &RealSweep,
+    clock: &mut RealClock,
+) -> Result<WarmUp> {
+    let period = sweep.display.period_ms();
+    let (mut warm_picture, mut lead_in_world_s, mut last_busy_ms) = (None, 0.0, 0.0);
+    for k in (1..=sweep.warmup).rev() {
+        let t_s = -f64::from(k) * period / 1000.0;
+        lead_in_world_s = t_s;
+        let m = source.frame(PathPoint::Time { index: 0, t_s }, controller.quality())?;
+        let handed = source.hand_over()?;
+        // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
+        let _ = controller.observe(&m.report);
+        last_busy_ms = m.report.tp_ms + handed.ms;
+        clock.expect(last_busy_ms);
+        warm_picture = handed.image;
+    }
+    let screen = OnScreen {
+        frame: None,
+        visible_ms: 0.0,
+        picture: warm_picture,
+    };
+    Ok(WarmUp {
+        screen,
+        lead_in_world_s,
+        last_busy_ms,
+    })
+}
+
 /// Runs `controller` under the real clock: warm-up frames leading up to the path's start, then frames
 /// for as long as one starts before the run's end, each rendering the path at the time the
 /// display model predicts it will be shown. Pictures of the frames on screen at the samples
@@ -314,23 +355,11 @@ pub fn run_controller_real(
     progress.set_message(name.to_string());
     let mut clock = RealClock::new(sweep.display, sweep.duration_s)?;
     let (period, end) = (sweep.display.period_ms(), clock.duration_ms());
-    let (mut warm_picture, mut lead_in_world_s, mut last_busy_ms) = (None, 0.0, 0.0);
-    for k in (1..=sweep.warmup).rev() {
-        let t_s = -f64::from(k) * period / 1000.0;
-        lead_in_world_s = t_s;
-        let m = source.frame(PathPoint::Time { index: 0, t_s }, controller.quality())?;
-        let handed = source.hand_over()?;
-        // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
-        let _ = controller.observe(&m.report);
-        last_busy_ms = m.report.tp_ms + handed.ms;
-        clock.expect(last_busy_ms);
-        warm_picture = handed.image;
-    }
-    let mut screen = OnScreen {
-        frame: None,
-        visible_ms: 0.0,
-        picture: warm_picture,
-    };
+    let WarmUp {
+        mut screen,
+        lead_in_world_s,
+        mut last_busy_ms,
+    } = warm_up(source, controller, sweep, &mut clock)?;
     let mut pictures = BTreeMap::new();
     let (mut rows, mut records, mut world_s) = (Vec::new(), Vec::new(), Vec::new());
     let mut shown_ms = 0u64;

@@ -538,6 +538,41 @@ fn open_playback_mode(
     })
 }
 
+impl Playback {
+    /// Moves the playback `dt_s` on and uploads the recorded frame due then, if it is not on
+    /// screen yet: its index, and its sample when it is new (at window time `t_s`, shown
+    /// `now`).
+    fn advance(
+        &mut self,
+        dt_s: f32,
+        (now, t_s): (Instant, f64),
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<(usize, Option<Sample>)> {
+        self.elapsed_ms += f64::from(dt_s) * 1e3;
+        let i = self.recording.frame_at(self.elapsed_ms);
+        if self.shown == Some(i) {
+            return Ok((i, None));
+        }
+        let (width, height, rgba) = self.recording.load(i)?;
+        self.upload.write(device, queue, width, height, &rgba);
+        self.shown = Some(i);
+        // Shown on screen this long after the previous recorded frame.
+        let interval = self
+            .shown_at
+            .replace(now)
+            .map(|s| now.duration_since(s).as_secs_f64() * 1e3);
+        let sample = Sample {
+            t_s,
+            render_ms: self.recording.frame(i).tp_ms,
+            present_ms: interval,
+            quality: steadyray_control::Quality::new(1.0, 0, 1.0),
+            rays: 0,
+        };
+        Ok((i, Some(sample)))
+    }
+}
+
 /// Opens a device on `adapter` for the window alone (CPU rendering and playback).
 fn display_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue)> {
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -880,29 +915,8 @@ impl Running {
                 }
             }
             Mode::Playback(p) => {
-                if !paused {
-                    p.elapsed_ms += f64::from(dt_s) * 1e3;
-                }
-                let i = p.recording.frame_at(p.elapsed_ms);
-                let mut sample = None;
-                if p.shown != Some(i) {
-                    let (width, height, rgba) = p.recording.load(i)?;
-                    p.upload
-                        .write(&self.device, &self.queue, width, height, &rgba);
-                    p.shown = Some(i);
-                    // Shown on screen this long after the previous recorded frame.
-                    let interval = p
-                        .shown_at
-                        .replace(now)
-                        .map(|s| now.duration_since(s).as_secs_f64() * 1e3);
-                    sample = Some(Sample {
-                        t_s,
-                        render_ms: p.recording.frame(i).tp_ms,
-                        present_ms: interval,
-                        quality: steadyray_control::Quality::new(1.0, 0, 1.0),
-                        rays: 0,
-                    });
-                }
+                let elapsed_s = if paused { 0.0 } else { dt_s };
+                let (i, sample) = p.advance(elapsed_s, (now, t_s), &self.device, &self.queue)?;
                 (
                     p.upload.image(),
                     sample,
