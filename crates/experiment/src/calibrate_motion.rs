@@ -22,7 +22,7 @@
 
 use crate::bench::displayed::{TimedReferences, measure, screen_samples};
 use crate::bench::machine::git_revision;
-use crate::bench::real_clock::{DisplayRun, Warps};
+use crate::bench::screen::{DisplayRun, Warps};
 use crate::bench::source::{
     FrameSource, HandOver, Measured, PathPoint, read_picture, render_measured, set_history,
     warp_measured,

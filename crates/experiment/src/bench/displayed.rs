@@ -3,7 +3,7 @@
 //! stated viewing set-up. References are rendered after the runs (the runs do not wait for
 //! them), once per time, and shared by every controller.
 
-use super::real_clock::DisplayRun;
+use super::screen::{DisplayRun, DisplayedQuality, ScoredSample, ScreenSample};
 use super::source::{FrameSource, PathPoint, render_reference};
 use anyhow::{Context, Result, bail};
 use rayon::prelude::*;
@@ -128,23 +128,6 @@ impl TimedReferences {
     }
 }
 
-/// The screen at one sample: its time, what it showed and that frame's world time.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ScreenSample {
-    /// The sample's number: it is at `index`·P.
-    pub index: usize,
-    /// The refresh's time on the display, s.
-    pub time_s: f64,
-    /// The frame on screen; `None`: the last warm-up frame.
-    pub frame: Option<usize>,
-    /// Whether the refresh showed that frame warped to its own time (`--warp`).
-    pub warped: bool,
-    /// The world time the screen shows, s: its frame's, or the refresh's own for a warp (what
-    /// a warp gets wrong, objects that moved since the frame and what it uncovers, is its
-    /// picture's error, not its age).
-    pub world_s: f64,
-}
-
 /// The screen of a run at every sample `wants` asks for, every `period_ms`.
 pub fn screen_samples(
     run: &DisplayRun,
@@ -212,39 +195,6 @@ pub fn screen_picture(
     }
 }
 
-/// One sampled refresh against the references (a row of `displayed.csv`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ScoredSample {
-    /// Where and when the screen was sampled.
-    pub sample: ScreenSample,
-    /// FLIP of the screen against the world at the refresh.
-    pub flip: f64,
-    /// FLIP of the screen against the world at the time its frame shows.
-    pub frame_flip: f64,
-    /// FLIP of the world at the frame's time against the world at the refresh.
-    pub age_flip: f64,
-}
-
-/// What one run's screen looked like against the references.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DisplayedQuality {
-    /// Mean and 95th percentile of FLIP of the screen against the world at the refresh.
-    pub flip_mean: f64,
-    /// The 95th percentile of the samples' FLIP.
-    pub flip_p95: f64,
-    /// Mean FLIP of the screen against the world at the time its frame shows: the picture's
-    /// own error, without its age.
-    pub frame_flip_mean: f64,
-    /// Mean FLIP of the world at the time its frame shows against the world at the refresh
-    /// (two references): what the screen's age costs a perfect picture, the part of
-    /// `flip_mean` no better picture at the same frame times can remove.
-    pub age_flip_mean: f64,
-    /// Mean age of the world on screen, ms (refresh time − the frame's world time).
-    pub age_ms_mean: f64,
-    /// Every sampled refresh's scores, in time order: the distribution behind the means.
-    pub scored: Vec<ScoredSample>,
-}
-
 /// Measures a run's screen at `samples` against `references` (which must hold every
 /// sample's time and every sampled frame's world time) at `pixels_per_degree`.
 pub fn measure(
@@ -296,7 +246,7 @@ pub fn measure(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::real_clock::Warps;
+    use crate::bench::screen::Warps;
     use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
 
     const P_S: f64 = 1.0 / 60.0;

@@ -28,6 +28,7 @@ pub mod real_clock;
 pub mod record;
 pub mod report;
 pub mod runs;
+pub mod screen;
 pub mod screen_quality;
 pub mod source;
 pub mod video;

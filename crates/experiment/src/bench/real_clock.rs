@@ -3,19 +3,16 @@
 //! time advances by the measured Tp, hand-over and (`--warp`) warp costs alone, so whatever
 //! the bench does between frames (reading pictures back, keeping them) changes no figure.
 
-use super::displayed::DisplayedQuality;
 use super::record::{ControllerRun, FrameRow};
+use super::screen::{DisplayRun, Warps};
 use super::source::{FrameSource, PathPoint};
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
-use serde::Serialize;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 use std::time::Instant;
 use steadyray_control::{Band, Bounds, Controller, FrameRecord, summarize};
 use steadyray_display::model::{TIME_EPS_MS, refresh_at_or_after};
-use steadyray_display::{
-    DisplayConfig, DisplayFigures, FrameSlot, FrameTimes, RealClock, Timeline,
-};
+use steadyray_display::{DisplayConfig, DisplayFigures, FrameSlot, FrameTimes, RealClock};
 use steadyray_quality::Rgb8Image;
 
 /// What every real-clock run follows.
@@ -89,85 +86,6 @@ impl Keep {
         (refresh_at_or_after(from_ms, period_ms)..)
             .take_while(|&i| (i as f64 * period_ms) < last_ms)
             .any(|i| self.wants(i as usize))
-    }
-}
-
-/// A real-clock run as the viewer saw it.
-#[derive(Clone, Debug)]
-pub struct DisplayRun {
-    /// When each frame was shown, refresh by refresh.
-    pub timeline: Timeline,
-    /// What the viewer saw, in figures.
-    pub figures: DisplayFigures,
-    /// The pictures (tone-mapped, at their rendered size) of the frames on screen at the kept
-    /// samples, by frame; `None` is the last warm-up frame, on screen before the first.
-    pub pictures: BTreeMap<Option<usize>, Rgb8Image>,
-    /// The refreshes that showed the frame on screen warped to their own time (`--warp`),
-    /// with the pictures of those at kept samples.
-    pub warps: Warps,
-    /// World time of each frame, s.
-    pub world_s: Vec<f64>,
-    /// World time of the frame on screen before the first (`None`), s: the last warm-up
-    /// frame's, a refresh before the path's start in the bench.
-    pub lead_in_world_s: f64,
-    /// The screen against the references (`bench --quality`), measured after the runs.
-    pub quality: Option<DisplayedQuality>,
-    /// The frames' share (rendering and hand-over) of the run's wall time, %: the rest is
-    /// the bench's own work between frames. A GPU's clocks follow how busy it is, so a low
-    /// share slows its frames; `None` where the frames were not timed in wall time.
-    pub busy_pct: Option<f64>,
-}
-
-impl DisplayRun {
-    /// The world time a frame on screen shows, s.
-    pub fn world_of(&self, frame: Option<usize>) -> f64 {
-        frame.map_or(self.lead_in_world_s, |j| self.world_s[j])
-    }
-}
-
-/// The warped refreshes of a run (`--warp`).
-#[derive(Clone, Debug, Default)]
-pub struct Warps {
-    /// The refreshes (by index: refresh i is at i·P) that showed a warp.
-    pub shown: BTreeSet<usize>,
-    /// The warps' pictures at the kept samples, by refresh.
-    pub pictures: BTreeMap<usize, Rgb8Image>,
-    /// What each warp shown cost, ms.
-    pub ms: Vec<f64>,
-    /// Refreshes shown unwarped that should have been warped: without a new frame, beyond
-    /// the warps made ahead for them (`warps_to_make`) or whose warp would have cost the next frame its
-    /// refresh, or a frame's first showing whose warp did not fit before its refresh.
-    pub missed: usize,
-}
-
-/// The warps' figures in `summary.json`.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct WarpFigures {
-    /// Refreshes that showed a warp.
-    pub warps_shown: usize,
-    /// Their mean cost, ms.
-    pub warp_ms_mean: f64,
-    /// Refreshes shown unwarped that should have been warped (no time left for the warp).
-    pub warps_missed: usize,
-}
-
-impl Warps {
-    /// Records a warp shown at refresh `refresh` that cost `ms`, with its picture if kept.
-    pub fn record(&mut self, refresh: usize, ms: f64, picture: Option<Rgb8Image>) {
-        self.shown.insert(refresh);
-        self.ms.push(ms);
-        if let Some(picture) = picture {
-            self.pictures.insert(refresh, picture);
-        }
-    }
-
-    /// The figures of a run that warped.
-    pub fn figures(&self) -> WarpFigures {
-        WarpFigures {
-            warps_shown: self.shown.len(),
-            warp_ms_mean: steadyray_display::stats::mean(&self.ms).unwrap_or(0.0),
-            warps_missed: self.missed,
-        }
     }
 }
 
@@ -491,6 +409,7 @@ mod tests {
     use super::*;
     use crate::bench::displayed::time_key;
     use crate::bench::source::{HandOver, Measured, SIM_WARP_MS, SimulatedSource, simulated};
+    use std::collections::BTreeSet;
     use steadyray_control::{Quality, Setup, from_name};
     use steadyray_display::SyncMode;
     use steadyray_render::SampleStream;

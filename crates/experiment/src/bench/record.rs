@@ -1,6 +1,6 @@
 //! What the experiment records: one row per frame, one run per controller.
 
-use super::real_clock::DisplayRun;
+use super::screen::DisplayRun;
 use super::source::Measured;
 use anyhow::{Context, Result};
 use std::io::Write;

@@ -1,8 +1,8 @@
 //! The terminal table and `summary.json`.
 
 use super::machine::Machine;
-use super::real_clock::WarpFigures;
 use super::record::ControllerRun;
+use super::screen::WarpFigures;
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::fmt::Write as _;

@@ -17,9 +17,9 @@
 //! of the PNGs replaces it. Each folder is written under a temporary name and renamed when
 //! complete, and `video.json` comes last: a folder without it is not a finished video.
 
-use super::displayed::{ScreenSample, TimedReferences, screen_picture, screen_samples};
-use super::real_clock::DisplayRun;
+use super::displayed::{TimedReferences, screen_picture, screen_samples};
 use super::record::safe_name;
+use super::screen::{DisplayRun, ScreenSample};
 use super::source::{FrameSource, PathPoint, render_reference};
 use anyhow::{Context, Result, bail};
 use image::ImageEncoder;
