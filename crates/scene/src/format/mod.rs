@@ -135,81 +135,14 @@ impl Cx<'_> {
             let name = self.unique_name("shape", &r.name, &shape_names)?;
             shape_names.insert(name.to_owned(), ordinal);
             let Some(material_key) = &r.material else {
-                let gltf_file = r.kind.get_ref() == "mesh"
-                    && r.positions.is_none()
-                    && r.triangles.is_none()
-                    && r.path
-                        .as_ref()
-                        .is_some_and(|p| mesh_import::is_gltf_path(Path::new(p.get_ref())));
-                if !gltf_file {
-                    return Err(self.invalid(
-                        s.span(),
-                        format!(
-                            "shape {name:?}: missing `material` (only a mesh read from a glTF \
-                             file, .gltf or .glb, may leave it out to use the file's own \
-                             materials)"
-                        ),
-                    ));
-                }
-                let (file_materials, parts) = self.gltf_parts(s, name)?;
-                let label = format!("shape {name:?}");
-                let placement = self.mesh_transform(r, &label)?;
-                let instances = self.instances(r, &label)?;
-                let motion = self.shape_motion(r, name)?;
-                let mut made: HashMap<usize, usize> = HashMap::new();
-                let several = parts.len() > 1;
-                for (mesh, m) in parts {
-                    let (label, material) = &file_materials[m];
-                    let material = match made.get(&m) {
-                        Some(&i) => i,
-                        None => {
-                            let material_name = format!("{name}/{label}");
-                            if material_index.contains_key(&material_name) {
-                                return Err(self.invalid(
-                                    r.name.span(),
-                                    format!(
-                                        "shape {name:?}: the material made for glTF material \
-                                         {label:?} would be named {material_name:?}, which is \
-                                         already a material; rename the shape or that material"
-                                    ),
-                                ));
-                            }
-                            material_index.insert(material_name.clone(), materials.len());
-                            materials.push((material_name, material.clone()));
-                            made.insert(m, materials.len() - 1);
-                            materials.len() - 1
-                        }
-                    };
-                    let object_name = if several {
-                        format!("{name}/{label}")
-                    } else {
-                        name.to_owned()
-                    };
-                    if several {
-                        if let Some(first) = shape_names.get(&object_name) {
-                            return Err(self.invalid(
-                                r.name.span(),
-                                format!(
-                                    "shape {name:?}: the part for glTF material {label:?} \
-                                     would be named {object_name:?}, which shape {} already \
-                                     uses",
-                                    first + 1
-                                ),
-                            ));
-                        }
-                        shape_names.insert(object_name.clone(), ordinal);
-                    }
-                    objects.push(Object {
-                        name: object_name,
-                        shape: Shape::Mesh {
-                            mesh,
-                            placement,
-                            instances: instances.clone(),
-                        },
-                        material,
-                        motion: motion.clone(),
-                    });
-                }
+                let tables = (&mut materials, &mut material_index);
+                self.file_materials_shape(
+                    s,
+                    (name, ordinal),
+                    tables,
+                    &mut shape_names,
+                    &mut objects,
+                )?;
                 continue;
             };
             let material = match material_index.get(material_key.get_ref().as_str()) {
@@ -262,6 +195,97 @@ impl Cx<'_> {
             camera,
             path,
         })
+    }
+
+    /// A mesh read from a glTF file that gives no `material`: one object per part, each with
+    /// a material made from the file's own (named `shape/material`), added to `materials`
+    /// and to `objects`; the parts' names go into `shape_names` (with the `[[shapes]]`
+    /// table's `ordinal`) when there are several.
+    fn file_materials_shape(
+        &mut self,
+        s: &Spanned<RawShape>,
+        (name, ordinal): (&str, usize),
+        (materials, material_index): (&mut Vec<(String, Material)>, &mut HashMap<String, usize>),
+        shape_names: &mut HashMap<String, usize>,
+        objects: &mut Vec<Object>,
+    ) -> Result<(), SceneError> {
+        let r = s.get_ref();
+        let gltf_file = r.kind.get_ref() == "mesh"
+            && r.positions.is_none()
+            && r.triangles.is_none()
+            && r.path
+                .as_ref()
+                .is_some_and(|p| mesh_import::is_gltf_path(Path::new(p.get_ref())));
+        if !gltf_file {
+            return Err(self.invalid(
+                s.span(),
+                format!(
+                    "shape {name:?}: missing `material` (only a mesh read from a glTF \
+                     file, .gltf or .glb, may leave it out to use the file's own \
+                     materials)"
+                ),
+            ));
+        }
+        let (file_materials, parts) = self.gltf_parts(s, name)?;
+        let label = format!("shape {name:?}");
+        let placement = self.mesh_transform(r, &label)?;
+        let instances = self.instances(r, &label)?;
+        let motion = self.shape_motion(r, name)?;
+        let mut made: HashMap<usize, usize> = HashMap::new();
+        let several = parts.len() > 1;
+        for (mesh, m) in parts {
+            let (label, material) = &file_materials[m];
+            let material = match made.get(&m) {
+                Some(&i) => i,
+                None => {
+                    let material_name = format!("{name}/{label}");
+                    if material_index.contains_key(&material_name) {
+                        return Err(self.invalid(
+                            r.name.span(),
+                            format!(
+                                "shape {name:?}: the material made for glTF material \
+                                 {label:?} would be named {material_name:?}, which is \
+                                 already a material; rename the shape or that material"
+                            ),
+                        ));
+                    }
+                    material_index.insert(material_name.clone(), materials.len());
+                    materials.push((material_name, material.clone()));
+                    made.insert(m, materials.len() - 1);
+                    materials.len() - 1
+                }
+            };
+            let object_name = if several {
+                format!("{name}/{label}")
+            } else {
+                name.to_owned()
+            };
+            if several {
+                if let Some(first) = shape_names.get(&object_name) {
+                    return Err(self.invalid(
+                        r.name.span(),
+                        format!(
+                            "shape {name:?}: the part for glTF material {label:?} \
+                             would be named {object_name:?}, which shape {} already \
+                             uses",
+                            first + 1
+                        ),
+                    ));
+                }
+                shape_names.insert(object_name.clone(), ordinal);
+            }
+            objects.push(Object {
+                name: object_name,
+                shape: Shape::Mesh {
+                    mesh,
+                    placement,
+                    instances: instances.clone(),
+                },
+                material,
+                motion: motion.clone(),
+            });
+        }
+        Ok(())
     }
 
     fn unique_name<'n>(
