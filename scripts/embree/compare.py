@@ -2,7 +2,7 @@
 """Steadyray's CPU ray casting against Embree's, side by side, on the same rays, in one run.
 
 Runs `steadyray raybench --dump-rays` once to get the triangles and the exact rays it traces
-(primary and diffuse-bounce; the format is in crates/steadyray/src/commands/ray_dump.rs),
+(primary and diffuse-bounce; the format is in crates/experiment/src/ray_dump.rs),
 checks that Embree finds the same hits on them, then alternates: a `steadyray raybench`
 run, an Embree run over the dumped rays, `--runs` times. Each run times every ray set
 `--reps` times and keeps the median, as raybench does. Prints one JSON line: both ray

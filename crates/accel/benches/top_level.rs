@@ -3,6 +3,9 @@
 //! leaves after every box moved a little, in both layouts. `cargo bench -p steadyray-accel
 //! --bench top_level`.
 
+// criterion_group! defines a public function it does not document.
+#![allow(missing_docs)]
+
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use std::hint::black_box;

@@ -19,14 +19,19 @@ const MAX_TRIANGLES: usize = 1 << 27;
 /// Why a BVH could not be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum BvhError {
+    /// More triangles than a BVH index holds.
     #[error("{0} triangles are more than the BVH holds (2^27)")]
     TooManyTriangles(usize),
     #[error(
         "the BVH is too deep: its {layout} traversal could need {needed} stack entries, more than it has ({capacity})"
     )]
+    /// A tree deeper than a traversal's stack.
     TooDeep {
+        /// The traversal (its layout).
         layout: &'static str,
+        /// The stack entries the tree could need.
         needed: usize,
+        /// The stack entries the traversal has.
         capacity: usize,
     },
 }

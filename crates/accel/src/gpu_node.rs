@@ -27,12 +27,19 @@ pub const GPU_STACK_SIZE: usize = 64;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuNode {
+    /// The children's boxes: smallest x.
     pub min_x: [f32; GPU_WIDTH],
+    /// Smallest y.
     pub min_y: [f32; GPU_WIDTH],
+    /// Smallest z.
     pub min_z: [f32; GPU_WIDTH],
+    /// Largest x.
     pub max_x: [f32; GPU_WIDTH],
+    /// Largest y.
     pub max_y: [f32; GPU_WIDTH],
+    /// Largest z.
     pub max_z: [f32; GPU_WIDTH],
+    /// The children (nodes or leaves, as the WGSL decodes them).
     pub child: [u32; GPU_WIDTH],
     /// Fills the node to a whole cache line.
     pub pad: [u32; GPU_WIDTH],

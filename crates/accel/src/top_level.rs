@@ -40,7 +40,9 @@ const REFIT_LIMIT: f32 = 1.5;
 /// An axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bounds {
+    /// The smallest corner.
     pub min: Vec3,
+    /// The largest corner.
     pub max: Vec3,
 }
 

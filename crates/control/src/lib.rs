@@ -92,6 +92,7 @@ pub mod quality;
 pub mod ray_model;
 pub mod report;
 pub mod simulate;
+pub mod spec;
 pub mod step;
 
 pub use band::{Band, Position};
@@ -111,4 +112,5 @@ pub use perceptual::{Perceptual, PerceptualParams, Prospect};
 pub use predictive::{Aim, Predictive, PredictiveParams};
 pub use quality::{Bounds, Knob, KnobOrder, Quality};
 pub use report::{FrameReport, MAX_FRAME_MS, ReportError};
+pub use spec::{ControllerSpec, SpecError, parse_controllers};
 pub use step::{Step, StepKnob, StepParams};

@@ -19,7 +19,9 @@ pub const ALIGNED_WIDTH: f64 = 0.2;
 /// bands (`perceptual`) chooses its own.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BandShape {
+    /// Kept free under the refresh, as a fraction of the frame interval.
     pub margin: f64,
+    /// The band's width, as a fraction of the frame interval.
     pub width: f64,
 }
 

@@ -86,7 +86,9 @@ pub enum SyncMode {
 /// can make).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct DisplayConfig {
+    /// The refresh rate, Hz (with VRR, the range's maximum).
     pub refresh_hz: f64,
+    /// Vsync on or off, or variable refresh.
     #[serde(flatten)]
     pub sync: SyncMode,
 }

@@ -13,7 +13,12 @@ pub enum DisplayError {
     #[error(
         "variable refresh range {min_hz}-{max_hz} Hz is invalid: it must be MIN-MAX with 0 < MIN < MAX <= 1000"
     )]
-    BadVrr { min_hz: f64, max_hz: f64 },
+    BadVrr {
+        /// The range's minimum, Hz.
+        min_hz: f64,
+        /// Its maximum, Hz.
+        max_hz: f64,
+    },
     /// Text that does not read as a variable refresh range.
     #[error("cannot read a variable refresh range from `{0}`: write MIN-MAX in Hz, e.g. 48-144")]
     VrrSyntax(String),
@@ -24,13 +29,19 @@ pub enum DisplayError {
     /// time at all (display time would not advance).
     #[error("frame time {name} = {value} ms is invalid: {why}")]
     BadFrameTime {
+        /// Which time.
         name: &'static str,
+        /// Its value, ms.
         value: f64,
+        /// What is wrong with it.
         why: &'static str,
     },
     /// A frame was presented after the run's last frame slot.
     #[error("the run is over: no frame starts at or after its end ({duration_ms} ms)")]
-    RunOver { duration_ms: f64 },
+    RunOver {
+        /// The run's length, ms.
+        duration_ms: f64,
+    },
     /// A viewing set-up with a size, distance or resolution that is not positive.
     #[error("viewing set-up is invalid: {0}")]
     BadViewing(String),

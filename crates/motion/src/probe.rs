@@ -16,6 +16,7 @@ pub const GRID_COLUMNS: u32 = 32;
 /// A frame's camera and times, s.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shot {
+    /// The frame's camera.
     pub camera: Camera,
     /// When the frame is shown: the clock speeds are per.
     pub time_s: f64,

@@ -32,7 +32,12 @@ pub struct ScreenSpeed {
 pub enum Seen {
     /// The primary hit: its world position at the frame's time, and at the previous frame's
     /// (the same on a still object).
-    Point { now: Vec3, before: Vec3 },
+    Point {
+        /// Where it is at the frame's time.
+        now: Vec3,
+        /// Where it was at the previous frame's.
+        before: Vec3,
+    },
     /// No hit: the background in this direction.
     Direction(Vec3),
 }

@@ -26,13 +26,7 @@ fn main() {
     for name in builtin_names() {
         let scene = builtin(name).expect("a built-in scene parses");
         for (scale, spp) in SET_UPS {
-            let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
-            let settings = RenderSettings {
-                width: side(WIDTH),
-                height: side(HEIGHT),
-                spp,
-                max_depth: 8,
-            };
+            let settings = RenderSettings::scaled((WIDTH, HEIGHT), scale, spp, 8);
             let mut renderer = CpuRenderer::with_threads(2);
             renderer.load_scene(&scene).expect("loads");
             renderer

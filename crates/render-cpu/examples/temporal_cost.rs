@@ -14,13 +14,7 @@ fn main() {
     let scale: f32 = args.next().and_then(|a| a.parse().ok()).unwrap_or(1.0);
     let scene = builtin("corridor").expect("the corridor is built in");
     let (width, height) = (640, 360);
-    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
-    let settings = RenderSettings {
-        width: side(width),
-        height: side(height),
-        spp: 1.0,
-        max_depth: 16,
-    };
+    let settings = RenderSettings::scaled((width, height), scale, 1.0, 16);
     let mut plain = CpuRenderer::with_threads(threads);
     let mut temporal = CpuRenderer::with_threads(threads);
     plain.load_scene(&scene).expect("loads");

@@ -22,13 +22,7 @@ fn main() {
     let scene = builtin("corridor").expect("the corridor is built in");
     let width: u32 = args.next().and_then(|a| a.parse().ok()).unwrap_or(640);
     let height = width * 9 / 16;
-    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
-    let settings = RenderSettings {
-        width: side(width),
-        height: side(height),
-        spp: 1.0,
-        max_depth: 16,
-    };
+    let settings = RenderSettings::scaled((width, height), scale, 1.0, 16);
     let mut r = CpuRenderer::with_threads(threads);
     r.load_scene(&scene).expect("loads");
     r.set_temporal(Some(TemporalSettings { width, height }))

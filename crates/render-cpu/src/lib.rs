@@ -14,6 +14,7 @@ mod plane;
 mod probe;
 mod quad;
 mod ray;
+pub mod raycast;
 mod render;
 mod simd;
 mod sphere;

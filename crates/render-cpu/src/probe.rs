@@ -10,6 +10,7 @@ use glam::Vec3;
 pub struct TracedRay {
     /// 0 for the first ray, +1 per reflection or refraction.
     pub depth: u32,
+    /// Where the ray starts.
     pub origin: Vec3,
     /// The direction as traced (not renormalised).
     pub dir: Vec3,
@@ -18,7 +19,9 @@ pub struct TracedRay {
 /// The path of one sample: every ray of its chain, its shadow-ray count and its radiance.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PathTrace {
+    /// Every ray of the chain, the eye ray first.
     pub rays: Vec<TracedRay>,
+    /// Shadow rays traced along it.
     pub shadow_rays: u64,
     /// Linear radiance carried back to the first ray's origin.
     pub radiance: Vec3,

@@ -33,9 +33,8 @@ fn temporal(scene: &Scene, width: u32, height: u32) -> CpuRenderer {
 /// Renders `frames` temporal frames of `camera` at scale `scale` and returns the history.
 fn accumulate(r: &mut CpuRenderer, camera: &Camera, frames: u32, spp: f32, scale: f32) -> Image {
     let (w, h) = (160, 90);
-    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
     for _ in 0..frames {
-        r.render(camera, 0.0, &settings(side(w), side(h), spp, 8))
+        r.render(camera, 0.0, &RenderSettings::scaled((w, h), scale, spp, 8))
             .unwrap();
     }
     r.read_image().unwrap()

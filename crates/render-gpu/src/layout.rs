@@ -107,7 +107,7 @@ pub struct GpuFrame {
 }
 
 /// The samples one dispatch of the integrator traces per pixel (WGSL `SampleRange`): those
-/// with index i, `first <= i < end`, of the pixel's n ([`crate::sample_ranges`]).
+/// with index i, `first <= i < end`, of the pixel's n (`sample_ranges`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuSampleRange {

@@ -90,11 +90,10 @@ fn a_sweep_with_changing_scale_and_quality() {
     let steps: Vec<Step> = (0..15)
         .map(|k| {
             let (scale, spp, depth) = qualities[k % qualities.len()];
-            let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
             (
                 scene.camera_at(k as u32, 90),
                 0.0,
-                settings(side(w), side(h), spp, depth),
+                RenderSettings::scaled((w, h), scale, spp, depth),
             )
         })
         .collect();

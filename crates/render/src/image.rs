@@ -5,8 +5,11 @@ use crate::tonemap::linear_to_srgb8_fast;
 /// A linear-RGB radiance image, row-major, top row first.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// Linear RGB radiance per pixel, `width × height` of them.
     pub pixels: Vec<[f32; 3]>,
 }
 

@@ -17,20 +17,28 @@ pub struct BackendInfo {
 /// Why a renderer could not render.
 #[derive(Debug, Error)]
 pub enum RenderError {
+    /// Settings no renderer can render.
     #[error(transparent)]
     Settings(#[from] SettingsError),
+    /// A scene time that is not a finite number.
     #[error("scene time {0} s is not a finite number")]
     BadTime(f64),
+    /// A camera with a non-finite or degenerate frame.
     #[error("cannot render from this camera: {0}")]
     BadCamera(String),
+    /// Rendering before a scene was loaded.
     #[error("no scene loaded: call load_scene first")]
     NoScene,
+    /// Reading a frame before one was rendered.
     #[error("no frame rendered yet: render before reading the image")]
     NoFrame,
+    /// A scene this backend cannot render.
     #[error("scene cannot be rendered by this backend: {0}")]
     Scene(String),
+    /// The GPU failed.
     #[error("GPU error: {0}")]
     Gpu(String),
+    /// The backend cannot do what was asked.
     #[error("not available: {0}")]
     Unavailable(String),
 }
@@ -39,8 +47,11 @@ pub enum RenderError {
 /// major, top row first.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Picture {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// 8-bit sRGB RGBA per pixel, row-major, top row first.
     pub rgba: Vec<u8>,
 }
 

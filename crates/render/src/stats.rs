@@ -62,9 +62,13 @@ pub struct FrameStats {
     pub accel_ms: f64,
     /// Host wall-clock time of the whole `render` call (submit and wait included), ms.
     pub wall_ms: f64,
+    /// Where `render_ms` comes from.
     pub timing: TimingSource,
+    /// The rays traced.
     pub rays: RayCounts,
+    /// The frame's width in pixels.
     pub width: u32,
+    /// The frame's height in pixels.
     pub height: u32,
     /// Eye samples actually taken (S × pixels, with fractional S dithered).
     pub samples: u64,

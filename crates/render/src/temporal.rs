@@ -66,7 +66,9 @@ const JITTER_STEP: [u32; 2] = [0xc13f_a9a9, 0x91e1_0da6];
 /// (full-resolution) size, whatever resolution each frame is rendered at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TemporalSettings {
+    /// The history's width in pixels.
     pub width: u32,
+    /// The history's height in pixels.
     pub height: u32,
 }
 

@@ -39,8 +39,11 @@ pub struct MeshGeometry {
 /// An infinite plane, its material and its surface id.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlaneLeaf {
+    /// A point on the plane.
     pub point: Vec3,
+    /// Its normal.
     pub normal: Vec3,
+    /// Its material's index.
     pub material: u32,
     /// Its surface id ([`SceneLayout::surface_count`]).
     pub surface: u32,
@@ -49,17 +52,27 @@ pub struct PlaneLeaf {
 /// One leaf of the top level.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Leaf {
+    /// A sphere at the frame's time.
     Sphere {
+        /// Its centre.
         center: Vec3,
+        /// Its radius.
         radius: f32,
+        /// Its material's index.
         material: u32,
     },
+    /// A two-sided parallelogram at the frame's time.
     Quad {
+        /// One corner.
         corner: Vec3,
+        /// The edge from it along u.
         edge_u: Vec3,
+        /// The edge from it along v.
         edge_v: Vec3,
+        /// Its material's index.
         material: u32,
     },
+    /// A copy of a mesh.
     Instance(Instance),
 }
 
@@ -68,6 +81,7 @@ pub enum Leaf {
 pub struct Instance {
     /// Index into [`SceneLayout::meshes`].
     pub mesh: u32,
+    /// Its material's index.
     pub material: u32,
     /// World to mesh space as three rows (x, y, z, translation): a ray `o + t·d` becomes
     /// `o' + t·d'` with `o'_i = r_i.x·o.x + r_i.y·o.y + r_i.z·o.z + r_i.w` and

@@ -1,7 +1,5 @@
 //! The `steadyray` command: bench, render, scenes, adapters.
 
-mod backend;
-mod bench;
 mod cli;
 mod commands;
 mod image_out;
@@ -10,23 +8,24 @@ mod view;
 use clap::Parser;
 use cli::{Cli, Command};
 use std::process::ExitCode;
+use steadyray_experiment::{backend, bench, calibrate, compare, jod, raybench};
 
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Bench(args) => bench::run(args),
+        Command::Bench(args) => bench::run(&args.into()),
         Command::Render(args) => commands::render::run(args),
         Command::Scenes => {
             commands::scenes::run();
             Ok(())
         }
         Command::Adapters => backend::print_adapters(),
-        Command::Compare(args) => commands::compare::run(args),
-        Command::Calibrate(args) => commands::calibrate::run(args),
+        Command::Compare(args) => compare::run(&args.into()),
+        Command::Calibrate(args) => calibrate::run(&args.into()),
         Command::View(args) => view::run(args),
-        Command::Raybench(args) => commands::raybench::run(args),
-        Command::Jod(args) => commands::jod::run(args),
+        Command::Raybench(args) => raybench::run(&args.into()),
+        Command::Jod(args) => jod::run(&args.into()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,12 +1,12 @@
 //! `steadyray render`: one still image, or with `--temporal` the history of a sequence (with
 //! `--shown`, the picture the display shows of it).
 
-use crate::backend::create_renderer;
 use crate::cli::RenderArgs;
 use crate::image_out::{ImageFormat, image_format, save_image, save_picture};
 use anyhow::{Context, Result, bail};
 use serde_json::json;
 use std::path::Path;
+use steadyray_experiment::backend::create_renderer;
 use steadyray_render::sample_stream::check_reference_spp;
 use steadyray_render::{RenderSettings, Renderer, SampleStream, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
@@ -101,13 +101,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             }
         }
     };
-    let side = |v: u32| ((v as f32 * args.scale).round() as u32).max(1);
-    let settings = RenderSettings {
-        width: side(full.width),
-        height: side(full.height),
-        ..full
-    };
-    let mut renderer = create_renderer(args.scene.backend)?;
+    let settings = RenderSettings::scaled(
+        (full.width, full.height),
+        args.scale,
+        full.spp,
+        full.max_depth,
+    );
+    let mut renderer = create_renderer(args.scene.backend.into())?;
     renderer.load_scene(&scene)?;
     if args.reference {
         renderer.set_sample_stream(SampleStream::Reference);

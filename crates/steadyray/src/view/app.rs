@@ -14,7 +14,6 @@ use super::path_clock::PathClock;
 use super::playback::Recording;
 use super::screen::{Drawn, Screen, UiFrame};
 use super::{Content, LiveSetup, Plan};
-use crate::backend::ADAPTER_ENV;
 use crate::cli::BackendChoice;
 use anyhow::{Context, Result, anyhow};
 use glam::Vec3;
@@ -24,8 +23,10 @@ use std::sync::Arc;
 use std::time::Instant;
 use steadyray_control::{Band, FrameReport};
 use steadyray_display::ViewingSetup;
+use steadyray_experiment::backend::ADAPTER_ENV;
+use steadyray_experiment::frame_loop::FrameLoop;
 use steadyray_motion::{MotionProbe, MotionTracker, Shot};
-use steadyray_render::{FrameStats, RenderSettings, TemporalSettings, TimingSource};
+use steadyray_render::TemporalSettings;
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{GpuOptions, GpuRenderer, surface_adapter};
 use steadyray_scene::{Camera, CameraPath, PathMotion};
@@ -117,6 +118,8 @@ enum Flow {
 /// The live view's moving parts.
 struct Live {
     renderer: LiveRenderer,
+    /// Renders the frames at the window's size and says which time the controller sees.
+    frame_loop: FrameLoop,
     control: LiveControl,
     camera: FlyCamera,
     sweep: Sweep,
@@ -211,35 +214,26 @@ impl Live {
         timing: &mut String,
     ) -> Result<Sample> {
         let q = self.control.quality();
-        let (width, height) = scaled(full, q.scale);
-        let settings = RenderSettings {
-            width,
-            height,
-            spp: q.spp,
-            max_depth: q.depth,
-        };
+        self.frame_loop.set_full_size(full);
         // The previous frame's present work first: the render call's wall time is then its
         // own, a check on the GPU timestamps.
         if let Err(e) = device.poll(wgpu::PollType::wait_indefinitely()) {
             return Err(anyhow!("waiting for the GPU failed: {e}"));
         }
-        let stats = self.renderer.render(&camera, scene_time_s, &settings)?;
+        let frame = self
+            .frame_loop
+            .render(self.renderer.renderer(), &camera, scene_time_s, q)?;
         self.warpable = self.history.is_some();
-        let (render_ms, source) = controller_time(&stats);
-        if source != TimingSource::GpuTimestamps && timing.starts_with("GPU timestamps") {
+        if frame.time.switched {
             log::warn!(
                 "GPU timestamps say {:.2} ms but the render call took {:.2} ms: the controller \
                  uses the wall clock from now on",
-                stats.render_ms,
-                stats.wall_ms
+                frame.stats.render_ms,
+                frame.stats.wall_ms
             );
             *timing = "GPU wall clock".into();
         }
-        let render_ms = if timing.starts_with("GPU wall clock") {
-            stats.wall_ms
-        } else {
-            render_ms
-        };
+        let render_ms = frame.report.tp_ms;
         // The motion on screen since the last frame (outside the render's time).
         let motion = self.motion.next(Shot {
             camera,
@@ -248,13 +242,8 @@ impl Live {
         })?;
         self.speed_deg_s = Some(motion.mean_deg_s);
         let report = FrameReport {
-            tp_ms: render_ms,
-            rays_per_depth: stats.rays.per_depth.clone(),
-            shadow_rays: stats.rays.shadow,
-            rays_stopped: Some(stats.rays.stopped),
-            pixels: settings.pixels(),
-            quality: q,
             speed_deg_s: motion.mean_deg_s,
+            ..frame.report
         };
         if let Err(e) = self.control.observe(&report) {
             log::warn!("the controller refused a frame report: {e}");
@@ -264,7 +253,7 @@ impl Live {
             render_ms,
             present_ms: None,
             quality: q,
-            rays: stats.rays.total(),
+            rays: frame.stats.rays.total(),
         })
     }
 
@@ -397,13 +386,6 @@ fn full_size((width, height): (u32, u32), pixel_size: u32) -> (u32, u32) {
     )
 }
 
-/// A frame size at resolution `scale` (the rule of `bench`: each side scaled and rounded,
-/// at least one pixel).
-fn scaled((width, height): (u32, u32), scale: f32) -> (u32, u32) {
-    let side = |v: u32| ((v as f32 * scale).round() as u32).max(1);
-    (side(width), side(height))
-}
-
 /// The default pixel size: hardware GPUs render at window resolution; the CPU renderer at
 /// about 640 pixels wide and software GPUs (lavapipe) at about 160.
 fn default_pixel_size(window_width: u32, gpu: bool, software: bool) -> u32 {
@@ -415,18 +397,179 @@ fn default_pixel_size(window_width: u32, gpu: bool, software: bool) -> u32 {
     window_width.div_ceil(target.max(1)).max(1)
 }
 
-/// The render time the controller sees for a frame, and where it came from: the renderer's
-/// own figure (GPU timestamps or the CPU renderer's time), unless GPU timestamps are
-/// implausibly far below the render call's wall time (lavapipe's, once frames are also
-/// presented on its queue, read about 0.3 ms for a 70 ms frame); then the wall time.
-fn controller_time(stats: &FrameStats) -> (f64, TimingSource) {
-    let implausible = stats.timing == TimingSource::GpuTimestamps
-        && stats.wall_ms - stats.render_ms > 5.0
-        && stats.render_ms < stats.wall_ms / 4.0;
-    if implausible {
-        (stats.wall_ms, TimingSource::WallClock)
-    } else {
-        (stats.render_ms, stats.timing)
+/// What the window shows, opened: the mode, the adapter and device it runs on, the device's
+/// label and where the frame times come from (for the HUD).
+struct Opened {
+    mode: Mode,
+    adapter: wgpu::Adapter,
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    device_label: String,
+    timing: String,
+}
+
+/// The settings of the plan a live view starts with.
+#[derive(Clone, Copy)]
+struct LiveOptions {
+    backend: BackendChoice,
+    sweep: bool,
+    sweep_seconds: f32,
+    speed: f32,
+    clock: Option<crate::cli::ClockChoice>,
+    pixel_size: Option<u32>,
+    temporal: super::ViewTemporal,
+    warps: u32,
+}
+
+impl LiveOptions {
+    fn of(plan: &Plan) -> Self {
+        Self {
+            backend: plan.backend,
+            sweep: plan.sweep,
+            sweep_seconds: plan.sweep_seconds,
+            speed: plan.speed,
+            clock: plan.clock,
+            pixel_size: plan.pixel_size,
+            temporal: plan.temporal,
+            warps: plan.warps,
+        }
+    }
+}
+
+/// Opens the live view of `setup` in a window of `size` on a monitor of `refresh_hz` (when
+/// it says): its renderer on the window's surface, the scene loaded.
+fn open_live_mode(
+    instance: &wgpu::Instance,
+    surface: &wgpu::Surface<'_>,
+    setup: LiveSetup,
+    options: LiveOptions,
+    (size, refresh_hz): ((u32, u32), Option<f64>),
+) -> Result<Opened> {
+    let LiveSetup { scene, control } = setup;
+    let (mut renderer, adapter, device, queue) = open_live(instance, surface, options.backend)?;
+    renderer.load_scene(&scene)?;
+    let device_label = renderer.describe();
+    let (gpu, software, timing) = match &renderer {
+        LiveRenderer::Gpu(r) => (
+            true,
+            r.adapter().is_software,
+            if r.has_timestamps() {
+                "GPU timestamps"
+            } else {
+                "GPU wall clock"
+            },
+        ),
+        LiveRenderer::Cpu { .. } => (false, false, "CPU wall clock"),
+    };
+    eprintln!("steadyray view: {device_label}");
+    let motion = MotionProbe::new(
+        &scene,
+        (size.0.max(1), size.1.max(1)),
+        ViewingSetup::standard_fhd(),
+    )?;
+    let live = Live {
+        renderer,
+        frame_loop: FrameLoop::new(size),
+        control,
+        motion: MotionTracker::new(motion),
+        camera: FlyCamera::from_camera(&scene.camera),
+        sweep: Sweep {
+            on: options.sweep,
+            period_s: options.sweep_seconds,
+        },
+        speed: options.speed,
+        scene_time_s: 0.0,
+        scene_duration_s: scene.path.duration_s(),
+        keyed_path: matches!(scene.path.motion, PathMotion::Keys(_))
+            .then(|| (scene.path.clone(), scene.camera)),
+        path_clock: options
+            .clock
+            .map(|choice| PathClock::new(choice, scene.path.clone(), scene.camera)),
+        pixel_size: options
+            .pixel_size
+            .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
+        temporal: options.temporal.starts_on(gpu),
+        history: None,
+        warps: options.warps,
+        warps_due: 0,
+        warps_on: true,
+        warpable: false,
+        refresh_ms: 1000.0 / refresh_hz.unwrap_or(FALLBACK_REFRESH_HZ),
+        speed_deg_s: None,
+    };
+    Ok(Opened {
+        mode: Mode::Live(Box::new(live)),
+        adapter,
+        device,
+        queue,
+        device_label,
+        timing: timing.to_string(),
+    })
+}
+
+/// Opens the playback of `recording` on an adapter that can show the window's surface.
+fn open_playback_mode(
+    instance: &wgpu::Instance,
+    surface: &wgpu::Surface<'_>,
+    recording: Recording,
+) -> Result<Opened> {
+    let options = GpuOptions {
+        adapter_name: std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty()),
+        allow_software: true,
+    };
+    let adapter = surface_adapter(instance, surface, &options)
+        .context("no GPU adapter can show frames in this window")?;
+    let (device, queue) = display_device(&adapter)?;
+    let label = format!("playback on {}", adapter.get_info().name);
+    let playback = Playback {
+        recording,
+        upload: Upload::new(&device),
+        elapsed_ms: 0.0,
+        shown: None,
+        shown_at: None,
+    };
+    Ok(Opened {
+        mode: Mode::Playback(Box::new(playback)),
+        adapter,
+        device,
+        queue,
+        device_label: label,
+        timing: "recorded Tp".to_string(),
+    })
+}
+
+impl Playback {
+    /// Moves the playback `dt_s` on and uploads the recorded frame due then, if it is not on
+    /// screen yet: its index, and its sample when it is new (at window time `t_s`, shown
+    /// `now`).
+    fn advance(
+        &mut self,
+        dt_s: f32,
+        (now, t_s): (Instant, f64),
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<(usize, Option<Sample>)> {
+        self.elapsed_ms += f64::from(dt_s) * 1e3;
+        let i = self.recording.frame_at(self.elapsed_ms);
+        if self.shown == Some(i) {
+            return Ok((i, None));
+        }
+        let (width, height, rgba) = self.recording.load(i)?;
+        self.upload.write(device, queue, width, height, &rgba);
+        self.shown = Some(i);
+        // Shown on screen this long after the previous recorded frame.
+        let interval = self
+            .shown_at
+            .replace(now)
+            .map(|s| now.duration_since(s).as_secs_f64() * 1e3);
+        let sample = Sample {
+            t_s,
+            render_ms: self.recording.frame(i).tp_ms,
+            present_ms: interval,
+            quality: steadyray_control::Quality::new(1.0, 0, 1.0),
+            rays: 0,
+        };
+        Ok((i, Some(sample)))
     }
 }
 
@@ -516,96 +659,19 @@ impl Running {
             .map(|mhz| f64::from(mhz) / 1000.0)
             .filter(|hz| hz.is_finite() && *hz > 0.0);
 
-        let (mode, adapter, device, queue, device_label, timing) = match plan.content {
+        let options = LiveOptions::of(&plan);
+        let Opened {
+            mode,
+            adapter,
+            device,
+            queue,
+            device_label,
+            timing,
+        } = match plan.content {
             Content::Live(setup) => {
-                let LiveSetup { scene, control } = *setup;
-                let (mut renderer, adapter, device, queue) =
-                    open_live(instance, &surface, plan.backend)?;
-                renderer.load_scene(&scene)?;
-                let device_label = renderer.describe();
-                let (gpu, software, timing) = match &renderer {
-                    LiveRenderer::Gpu(r) => (
-                        true,
-                        r.adapter().is_software,
-                        if r.has_timestamps() {
-                            "GPU timestamps"
-                        } else {
-                            "GPU wall clock"
-                        },
-                    ),
-                    LiveRenderer::Cpu { .. } => (false, false, "CPU wall clock"),
-                };
-                eprintln!("steadyray view: {device_label}");
-                let motion = MotionProbe::new(
-                    &scene,
-                    (size.0.max(1), size.1.max(1)),
-                    ViewingSetup::standard_fhd(),
-                )?;
-                let live = Live {
-                    renderer,
-                    control,
-                    motion: MotionTracker::new(motion),
-                    camera: FlyCamera::from_camera(&scene.camera),
-                    sweep: Sweep {
-                        on: plan.sweep,
-                        period_s: plan.sweep_seconds,
-                    },
-                    speed: plan.speed,
-                    scene_time_s: 0.0,
-                    scene_duration_s: scene.path.duration_s(),
-                    keyed_path: matches!(scene.path.motion, PathMotion::Keys(_))
-                        .then(|| (scene.path.clone(), scene.camera)),
-                    path_clock: plan
-                        .clock
-                        .map(|choice| PathClock::new(choice, scene.path.clone(), scene.camera)),
-                    pixel_size: plan
-                        .pixel_size
-                        .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
-                    temporal: plan.temporal.starts_on(gpu),
-                    history: None,
-                    warps: plan.warps,
-                    warps_due: 0,
-                    warps_on: true,
-                    warpable: false,
-                    refresh_ms: 1000.0 / refresh_hz.unwrap_or(FALLBACK_REFRESH_HZ),
-                    speed_deg_s: None,
-                };
-                let mode = Mode::Live(Box::new(live));
-                (
-                    mode,
-                    adapter,
-                    device,
-                    queue,
-                    device_label,
-                    timing.to_string(),
-                )
+                open_live_mode(instance, &surface, *setup, options, (size, refresh_hz))?
             }
-            Content::Playback(recording) => {
-                let options = GpuOptions {
-                    adapter_name: std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty()),
-                    allow_software: true,
-                };
-                let adapter = surface_adapter(instance, &surface, &options)
-                    .context("no GPU adapter can show frames in this window")?;
-                let (device, queue) = display_device(&adapter)?;
-                let label = format!("playback on {}", adapter.get_info().name);
-                let playback = Playback {
-                    recording,
-                    upload: Upload::new(&device),
-                    elapsed_ms: 0.0,
-                    shown: None,
-                    shown_at: None,
-                };
-                let mode = Mode::Playback(Box::new(playback));
-                (
-                    mode,
-                    adapter,
-                    device,
-                    queue,
-                    label,
-                    "recorded Tp".to_string(),
-                )
-            }
+            Content::Playback(recording) => open_playback_mode(instance, &surface, recording)?,
         };
         let screen = Screen::new(
             surface,
@@ -849,29 +915,8 @@ impl Running {
                 }
             }
             Mode::Playback(p) => {
-                if !paused {
-                    p.elapsed_ms += f64::from(dt_s) * 1e3;
-                }
-                let i = p.recording.frame_at(p.elapsed_ms);
-                let mut sample = None;
-                if p.shown != Some(i) {
-                    let (width, height, rgba) = p.recording.load(i)?;
-                    p.upload
-                        .write(&self.device, &self.queue, width, height, &rgba);
-                    p.shown = Some(i);
-                    // Shown on screen this long after the previous recorded frame.
-                    let interval = p
-                        .shown_at
-                        .replace(now)
-                        .map(|s| now.duration_since(s).as_secs_f64() * 1e3);
-                    sample = Some(Sample {
-                        t_s,
-                        render_ms: p.recording.frame(i).tp_ms,
-                        present_ms: interval,
-                        quality: steadyray_control::Quality::new(1.0, 0, 1.0),
-                        rays: 0,
-                    });
-                }
+                let elapsed_s = if paused { 0.0 } else { dt_s };
+                let (i, sample) = p.advance(elapsed_s, (now, t_s), &self.device, &self.queue)?;
                 (
                     p.upload.image(),
                     sample,
@@ -1117,42 +1162,15 @@ struct HudOutput {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use steadyray_render::RenderSettings;
 
     #[test]
     fn frame_sizes_follow_the_window_and_the_scale() {
         assert_eq!(full_size((480, 270), 3), (160, 90));
         assert_eq!(full_size((1281, 720), 2), (641, 360));
         assert_eq!(full_size((0, 0), 2), (1, 1));
-        assert_eq!(scaled((160, 90), 0.5), (80, 45));
-        assert_eq!(scaled((160, 90), 0.001), (1, 1));
-    }
-
-    #[test]
-    fn implausible_timestamps_give_way_to_the_wall_clock() {
-        let stats = |render_ms, wall_ms, timing| FrameStats {
-            render_ms,
-            accel_ms: 0.0,
-            wall_ms,
-            timing,
-            rays: Default::default(),
-            width: 1,
-            height: 1,
-            samples: 1,
-        };
-        let gpu = TimingSource::GpuTimestamps;
-        let wall = TimingSource::WallClock;
-        assert_eq!(controller_time(&stats(16.0, 17.5, gpu)), (16.0, gpu));
-        assert_eq!(
-            controller_time(&stats(0.4, 1.9, gpu)),
-            (0.4, gpu),
-            "small overhead"
-        );
-        assert_eq!(
-            controller_time(&stats(0.3, 72.0, gpu)),
-            (72.0, wall),
-            "lavapipe"
-        );
-        assert_eq!(controller_time(&stats(40.0, 41.0, wall)), (40.0, wall));
+        assert_eq!(RenderSettings::scaled_size((160, 90), 0.5), (80, 45));
+        assert_eq!(RenderSettings::scaled_size((160, 90), 0.001), (1, 1));
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! playback's PNGs are uploaded into one each frame.
 
 use anyhow::Result;
-use steadyray_render::{FrameStats, Presented, RenderSettings, Renderer, TemporalSettings};
+use steadyray_render::{Presented, Renderer, TemporalSettings};
 use steadyray_render_cpu::CpuRenderer;
 use steadyray_render_gpu::{DisplayImage, GpuRenderer};
 use steadyray_scene::{Camera, Scene};
@@ -85,7 +85,7 @@ pub enum LiveRenderer {
 
 impl LiveRenderer {
     /// The renderer as the [`Renderer`] trait.
-    fn renderer(&mut self) -> &mut dyn Renderer {
+    pub fn renderer(&mut self) -> &mut dyn Renderer {
         match self {
             LiveRenderer::Gpu(r) => r.as_mut(),
             LiveRenderer::Cpu { renderer, .. } => renderer.as_mut(),
@@ -106,16 +106,6 @@ impl LiveRenderer {
     /// Turns the temporal mode on with a new history, or off.
     pub fn set_temporal(&mut self, temporal: Option<TemporalSettings>) -> Result<()> {
         Ok(self.renderer().set_temporal(temporal)?)
-    }
-
-    /// Renders one frame of the scene at scene time `time_s`.
-    pub fn render(
-        &mut self,
-        camera: &Camera,
-        time_s: f64,
-        settings: &RenderSettings,
-    ) -> Result<FrameStats> {
-        Ok(self.renderer().render(camera, time_s, settings)?)
     }
 
     /// The last frame as the display shows it (`Renderer::present`: the temporal history

@@ -3,8 +3,8 @@
 //! change never jumps the image to the starting quality. A new band keeps the controller
 //! and what it has learned (its cost model); a new controller or new bounds build one.
 
-use crate::bench::ControllerSpec;
 use anyhow::{Result, bail};
+use steadyray_control::ControllerSpec;
 use steadyray_control::{
     Band, Bounds, CONTROLLER_NAMES, Controller, DisplayCosts, FrameReport, Quality, ReportError,
     Setup, from_name,

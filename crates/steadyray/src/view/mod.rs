@@ -53,7 +53,7 @@ pub struct ViewArgs {
     /// the hand-over measured over the first frames; the paper's [15, 20] ms holds until
     /// then.
     #[arg(long, value_name = "refresh[:M]")]
-    pub band: Option<crate::bench::RefreshBand>,
+    pub band: Option<steadyray_display::RefreshBand>,
     /// Window width in pixels (default 1280; in playback, the recording's frame size).
     #[arg(long)]
     pub width: Option<u32>,
