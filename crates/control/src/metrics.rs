@@ -1,4 +1,4 @@
-//! The benchmark's figures (spec/bench.md) computed from a run's per-frame records.
+//! The benchmark's figures (docs/bench-protocol.md) computed from a run's per-frame records.
 
 use crate::band::{Band, Position};
 use crate::quality::Quality;

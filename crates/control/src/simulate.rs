@@ -108,7 +108,7 @@ impl Load {
     }
 }
 
-/// The load of the `corridor` scene (spec/corridor.md) at camera yaw θ, modelled: around
+/// The load of the `corridor` scene (docs/corridor.md) at camera yaw θ, modelled: around
 /// θ = 0 the mirrors fill the sides of the view and rays bounce between them (a ray that hit
 /// a mirror hits the other one with probability up to 0.95, a little less at each level as
 /// rays leave the corridor's ends); around θ = ±π/2 almost nothing is drawn; around θ = π the

@@ -1,8 +1,10 @@
 //! Controllers as a list names them (`fixed,step:knob=both,predictive:order=depth,spp`):
-//! each a name and its options, parsed here and built by [`from_name`]. The bench runs one
+//! each a name and its options, parsed here and built by [`from_name_with`]. The bench runs one
 //! controller per entry; the window builds its controller from one too.
 
-use crate::controller::{CONTROLLER_NAMES, Controller, Setup, from_name, parse_options};
+use crate::controller::{
+    CONTROLLER_NAMES, Controller, OptionFiles, Setup, from_name_with, parse_options,
+};
 use crate::error::ConfigError;
 use thiserror::Error;
 
@@ -23,14 +25,19 @@ pub enum SpecError {
 pub struct ControllerSpec {
     /// The controller's name: one of [`CONTROLLER_NAMES`].
     pub name: String,
-    /// Its options, as [`from_name`] takes them.
+    /// Its options, as [`from_name_with`] takes them.
     pub options: String,
 }
 
 impl ControllerSpec {
-    /// Builds the controller (see [`from_name`]).
-    pub fn build(&self, setup: Setup) -> Result<Box<dyn Controller>, ConfigError> {
-        from_name(&self.name, setup, &self.options)
+    /// Builds the controller, with `files` giving the text of the files its options name
+    /// (see [`from_name_with`]).
+    pub fn build(
+        &self,
+        setup: Setup,
+        files: &dyn OptionFiles,
+    ) -> Result<Box<dyn Controller>, ConfigError> {
+        from_name_with(&self.name, setup, &self.options, files)
     }
 
     /// A `perceptual` controller not told its hand-over: under the real clock the bench

@@ -330,8 +330,8 @@ fn run_motion(args: &CalibrateConfig, renderer: &mut dyn Renderer, scene: &Scene
         .context("--motion scores the points of a calibrated ladder: give --ladder FILE")?;
     let text = std::fs::read_to_string(ladder_path)
         .with_context(|| format!("cannot read {}", ladder_path.display()))?;
-    let ladder = Ladder::from_json(&text)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", ladder_path.display()))?;
+    let ladder =
+        Ladder::from_json(&text).map_err(|e| anyhow::anyhow!("{}: {e}", ladder_path.display()))?;
     let out = args.out.clone().unwrap_or_else(|| "motion.json".into());
     if let Some(dir) = &args.video {
         crate::bench::video::prepare(dir)?;

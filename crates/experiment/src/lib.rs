@@ -10,6 +10,7 @@ pub mod calibrate;
 pub mod calibrate_motion;
 pub mod compare;
 pub mod config;
+pub mod files;
 pub mod frame_loop;
 pub mod jod;
 pub mod ray_dump;

@@ -1,6 +1,6 @@
 //! `steadyray raybench`: ray-casting throughput of the triangle BVH alone, without shading.
 //!
-//! One primary ray through each pixel centre (the pixel convention of `spec/corridor.md`),
+//! One primary ray through each pixel centre (the pixel convention of `docs/corridor.md`),
 //! then one cosine-weighted diffuse bounce ray from each primary hit (seeded, so every run
 //! traces the same rays). Both sets are traced `--reps` times for their closest hit; the
 //! command prints one JSON line with the triangle count, load and build times, the median

@@ -15,7 +15,7 @@ const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 const CAMERA: &str = r#"{"eye":[0.0869666,0.110154,0.1782621],"target":[-0.0168405,0.110154,-0.001537],"up":[0,1,0],"vfov":45}"#;
 
 fn bunny() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/stanford-bunny.obj")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/stanford-bunny.obj")
 }
 
 /// `steadyray raybench` at 32x18, one repetition, on `backend`, with `adapter` as

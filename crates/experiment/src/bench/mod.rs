@@ -1,4 +1,4 @@
-//! `steadyray bench`: the paper's experiment (`spec/bench.md`). Every controller runs the
+//! `steadyray bench`: the paper's experiment (`docs/bench-protocol.md`). Every controller runs the
 //! same camera sweep from the same starting quality, one after another in one process; the
 //! paper's fixed-R baseline and the best fixed quality run beside them. Writes a table,
 //! `frames.csv`, `summary.json` and `frametime.png`/`.svg` into the output folder.
@@ -8,7 +8,7 @@
 //! `--record DIR` keeps every delivered frame for playback ([`playback`]).
 //!
 //! `--clock real` runs each controller for a span of display time on the display model
-//! instead ([`real_clock`], `spec/display.md`): the table, `summary.json` and `table.md` then
+//! instead ([`real_clock`], `docs/display.md`): the table, `summary.json` and `table.md` then
 //! say what the viewer saw (frames shown per second, repeats, pacing, latency); `--quality`
 //! measures the screen against the world at sampled refreshes ([`displayed`]; each one's
 //! scores in `displayed.csv`) and `--video DIR` writes the screen and the reference at every
@@ -116,7 +116,7 @@ pub struct BenchConfig {
     /// sub-folder of DIR per controller.
     pub record: Option<PathBuf>,
     /// How time runs: `frames` (the paper's protocol: frame k of N shows the path at k/N of
-    /// its length) or `real` (display time on the display model, spec/display.md: each frame
+    /// its length) or `real` (display time on the display model, docs/display.md: each frame
     /// renders the world at its predicted display time; a faster controller renders more).
     pub clock: ClockChoice,
     /// With --clock real: seconds of display time per run (default: the path's length, its
@@ -444,12 +444,9 @@ mod tests {
         let bounds = Bounds::default();
         let setup = Setup::new(Band::PAPER, bounds, bounds.min_quality()).unwrap();
         for warp_ms in [0.0, 6.5] {
-            let params = PerceptualParams {
-                model: Some(model.clone()),
-                hand_over_ms: 1.6,
-                warp_ms,
-                ..PerceptualParams::default()
-            };
+            let mut params = PerceptualParams::with_model(model.clone());
+            params.hand_over_ms = 1.6;
+            params.warp_ms = warp_ms;
             let c = Perceptual::new(setup, params).unwrap();
             // It starts at the longest frame time: three refreshes, two of them warped.
             let (tmin, tmax) = aligned_band(&display, 3, 1.6, warp_ms).unwrap();

@@ -3,6 +3,7 @@
 
 use super::BenchConfig;
 use crate::config::{ClockChoice, TemporalChoice};
+use crate::files::DiskFiles;
 use anyhow::{Context, Result, bail};
 use steadyray_control::{
     Band, Bounds, Controller, ControllerSpec, Quality, Setup, parse_controllers,
@@ -63,7 +64,7 @@ impl Plan {
             .context("--fixed-depth is outside the R bounds")?;
         let controllers = specs
             .iter()
-            .map(|s| Ok(s.build(setup)?))
+            .map(|s| Ok(s.build(setup, &DiskFiles)?))
             .collect::<Result<Vec<_>>>()?;
         Ok((setup, controllers))
     }

@@ -95,7 +95,7 @@ pub struct BenchArgs {
     #[arg(long, value_name = "DIR")]
     pub record: Option<PathBuf>,
     /// How time runs: `frames` (the paper's protocol: frame k of N shows the path at k/N of
-    /// its length) or `real` (display time on the display model, spec/display.md: each frame
+    /// its length) or `real` (display time on the display model, docs/display.md: each frame
     /// renders the world at its predicted display time; a faster controller renders more).
     #[arg(long, value_enum, default_value_t = ClockChoice::Frames)]
     pub clock: ClockChoice,

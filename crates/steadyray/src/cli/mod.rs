@@ -221,7 +221,7 @@ pub struct RenderArgs {
     pub reference: bool,
 }
 
-/// How time runs (`spec/display.md`).
+/// How time runs (`docs/display.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ClockChoice {
     /// The paper's protocol: frame k of N shows the path at k/N of its length, whatever its

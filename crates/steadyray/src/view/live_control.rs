@@ -7,8 +7,9 @@ use anyhow::{Result, bail};
 use steadyray_control::ControllerSpec;
 use steadyray_control::{
     Band, Bounds, CONTROLLER_NAMES, Controller, DisplayCosts, FrameReport, Quality, ReportError,
-    Setup, from_name,
+    Setup, from_name_with,
 };
+use steadyray_experiment::files::DiskFiles;
 
 /// The controller in use and what it was built from.
 #[derive(Debug)]
@@ -42,7 +43,8 @@ impl LiveControl {
         bounds: Bounds,
         start: Quality,
     ) -> Result<Self> {
-        let controller = from_name(name, Setup::new(band, bounds, start)?, options)?;
+        let controller =
+            from_name_with(name, Setup::new(band, bounds, start)?, options, &DiskFiles)?;
         Ok(Self {
             initial: (name.to_string(), options.to_string()),
             band,
@@ -149,7 +151,8 @@ impl LiveControl {
     fn rebuild(&mut self, name: &str, band: Band, bounds: Bounds) -> Result<()> {
         let start = bounds.clamp(self.quality());
         let options = self.options_for(name);
-        self.controller = from_name(name, Setup::new(band, bounds, start)?, &options)?;
+        self.controller =
+            from_name_with(name, Setup::new(band, bounds, start)?, &options, &DiskFiles)?;
         self.band = band;
         self.bounds = bounds;
         Ok(())
