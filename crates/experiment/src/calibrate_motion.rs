@@ -344,7 +344,11 @@ type Cells = BTreeMap<(u32, usize), f64>;
 
 /// Runs the JOD tool on a finished stimulus folder and reads its scores (reusing a
 /// `jod.json` that already holds every run).
-fn score_with_jod(tool: &JodTool, folder: &Path, runs: &[String]) -> Result<BTreeMap<String, f64>> {
+pub(crate) fn score_with_jod(
+    tool: &JodTool,
+    folder: &Path,
+    runs: &[String],
+) -> Result<BTreeMap<String, f64>> {
     let read = || -> Option<BTreeMap<String, f64>> {
         let text = std::fs::read_to_string(folder.join("jod.json")).ok()?;
         let value: serde_json::Value = serde_json::from_str(&text).ok()?;
@@ -374,7 +378,7 @@ fn score_with_jod(tool: &JodTool, folder: &Path, runs: &[String]) -> Result<BTre
 }
 
 /// Removes a scored folder's pictures and videos, keeping its scores and what it held.
-fn prune_video(folder: &Path) -> Result<()> {
+pub(crate) fn prune_video(folder: &Path) -> Result<()> {
     for entry in std::fs::read_dir(folder)? {
         let path = entry?.path();
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");

@@ -8,7 +8,7 @@ mod view;
 use clap::Parser;
 use cli::{Cli, Command};
 use std::process::ExitCode;
-use steadyray_experiment::{backend, bench, calibrate, compare, jod, raybench};
+use steadyray_experiment::{backend, bench, calibrate, compare, jod, raybench, suite};
 
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
@@ -26,12 +26,32 @@ fn main() -> ExitCode {
         Command::View(args) => view::run(args),
         Command::Raybench(args) => raybench::run(&args.into()),
         Command::Jod(args) => jod::run(&args.into()),
+        Command::Suite(args) => run_suite(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+/// `steadyray suite run` and `steadyray suite table`.
+fn run_suite(args: &cli::suite::SuiteArgs) -> anyhow::Result<()> {
+    match &args.command {
+        cli::suite::SuiteCommand::Run(run) => suite::run(&run.config()?, &cli::suite::CommandLine),
+        cli::suite::SuiteCommand::Table(table) => {
+            let out = table
+                .out
+                .clone()
+                .unwrap_or_else(|| table.folders[0].clone());
+            print!("{}", suite::write_table(&table.folders, &out)?);
+            eprintln!(
+                "suite: wrote table.md, table.json, suite.png and suite.svg to {}",
+                out.display()
+            );
+            Ok(())
         }
     }
 }

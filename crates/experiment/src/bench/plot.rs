@@ -29,7 +29,7 @@ const SCALE_COLOUR: RGBColor = RGBColor(120, 60, 160);
 const LEGEND_WIDTH: u32 = 170;
 
 /// Registers the embedded font (once per process).
-fn register_plot_font() {
+pub(crate) fn register_plot_font() {
     static FONT_ONCE: Once = Once::new();
     FONT_ONCE.call_once(|| {
         register_font("sans-serif", FontStyle::Normal, FONT)

@@ -1,6 +1,7 @@
 //! The command line: subcommands and their arguments.
 
 pub mod experiment;
+pub mod suite;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -40,6 +41,9 @@ pub enum Command {
     /// Bring ColorVideoVDP's JOD scores (scripts/jod/) into a real-clock bench's reports:
     /// `merge` into summary.json and table.md, `plot` JOD against displayed fps.
     Jod(experiment::JodArgs),
+    /// The subjective comparison over the scene suite (docs/scene-suite.md): `run` its
+    /// cells (resumable, shardable), then `table` them.
+    Suite(suite::SuiteArgs),
 }
 
 /// Which renderer backend to use.
