@@ -52,3 +52,24 @@ pub enum ConfigError {
         why: String,
     },
 }
+
+/// Any error of this crate, for a caller that wants one type to `?` into: each function
+/// returns the precise error of its kind ([`ConfigError`] when building,
+/// [`crate::ReportError`] when a report is refused, [`crate::SpecError`] when a list of
+/// controllers cannot be read, [`crate::noise::NoiseError`] for a noise profile), and each
+/// converts into this one.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum Error {
+    /// A configuration mistake.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// A refused report.
+    #[error(transparent)]
+    Report(#[from] crate::report::ReportError),
+    /// A list of controllers that cannot be read.
+    #[error(transparent)]
+    Spec(#[from] crate::spec::SpecError),
+    /// A noise profile that cannot be read or is invalid.
+    #[error(transparent)]
+    Noise(#[from] crate::noise::NoiseError),
+}

@@ -101,7 +101,7 @@ pub use controller::{
     from_name_with, parse_options,
 };
 pub use decision::{Action, Decision, Reason};
-pub use error::ConfigError;
+pub use error::{ConfigError, Error};
 pub use fixed::Fixed;
 pub use hysteresis::{Hysteresis, HysteresisParams};
 pub use ladder::{Ladder, LadderPoint, pareto_front};

@@ -135,3 +135,20 @@ fn controllers_that_explain_nothing_say_so() {
     c.frame_done(Duration::from_millis(13), 1000).unwrap();
     assert!(c.decision().is_none());
 }
+
+#[test]
+fn every_error_converts_into_the_crate_error() {
+    fn frame(time: Duration) -> Result<Quality, steadyray_control::Error> {
+        let bounds = Bounds::scale_only(0.25, 1.0)?;
+        let setup = Setup::new(Band::new(12.0, 15.0)?, bounds, bounds.max_quality())?;
+        let mut c = from_name("predictive", setup, "")?;
+        Ok(c.frame_done(time, 1000)?)
+    }
+    assert!(frame(Duration::from_millis(13)).is_ok());
+    let refused = frame(Duration::ZERO).unwrap_err();
+    assert!(
+        matches!(refused, steadyray_control::Error::Report(_)),
+        "{refused}"
+    );
+    assert!(refused.to_string().contains("not positive"), "{refused}");
+}

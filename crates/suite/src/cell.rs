@@ -35,6 +35,7 @@ pub struct CellResult {
     pub displayed_fps: f64,
     /// Frames whose time fell in the method's band, %.
     pub in_band_pct: f64,
-    /// Seconds the cell took, all of it (calibration of its model excepted).
+    /// Seconds the cell took, all of it (with the calibration of its scene's `perceptual`
+    /// model for the first cell that needed one).
     pub seconds: f64,
 }
