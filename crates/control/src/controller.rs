@@ -89,8 +89,11 @@ pub struct DisplayCosts {
 /// What every controller needs: the band, the knobs' bounds and the starting quality.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Setup {
+    /// The frame-time band the controller keeps Tp in.
     pub band: Band,
+    /// The range each knob may take; the controller never leaves it.
     pub bounds: Bounds,
+    /// The quality of the first frame, inside `bounds`.
     pub start: Quality,
 }
 

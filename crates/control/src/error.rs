@@ -10,28 +10,50 @@ use thiserror::Error;
 pub enum ConfigError {
     /// Tmin or Tmax is NaN, infinite or not positive.
     #[error("band limit {name} = {value} ms is invalid: it must be a finite number above 0")]
-    BadBandLimit { name: &'static str, value: f64 },
+    BadBandLimit {
+        /// Which limit: `Tmin` or `Tmax`.
+        name: &'static str,
+        /// The value given, ms.
+        value: f64,
+    },
     /// Tmin is not below Tmax.
     #[error("band [{tmin_ms}, {tmax_ms}] ms is empty: Tmin must be below Tmax")]
-    EmptyBand { tmin_ms: f64, tmax_ms: f64 },
+    EmptyBand {
+        /// The lower limit given, ms.
+        tmin_ms: f64,
+        /// The upper limit given, ms.
+        tmax_ms: f64,
+    },
     /// A quality knob's range has min > max, or is NaN, or leaves the knob's legal values.
     #[error("bounds for {knob} are invalid: [{min}, {max}] ({why})")]
     BadBounds {
+        /// The knob's name (`spp`, `depth` or `scale`).
         knob: &'static str,
+        /// The lower end given.
         min: f64,
+        /// The upper end given.
         max: f64,
+        /// What is wrong with the range.
         why: &'static str,
     },
     /// A ladder over a knob has no rung (e.g. S in [1.2, 1.8] holds no whole number).
     #[error("the ladder over {knob} is empty: no whole value lies in [{min}, {max}]")]
     EmptyLadder {
+        /// The knob's name (`spp`, `depth` or `scale`).
         knob: &'static str,
+        /// The lower end of the knob's range.
         min: f64,
+        /// The upper end of the knob's range.
         max: f64,
     },
     /// The starting quality lies outside the bounds.
     #[error("start quality {quality} lies outside the bounds {bounds}")]
-    StartOutOfBounds { quality: String, bounds: String },
+    StartOutOfBounds {
+        /// The starting quality, as displayed.
+        quality: String,
+        /// The bounds, as displayed.
+        bounds: String,
+    },
     /// No controller has this name.
     #[error(
         "unknown controller `{0}`: expected one of fixed, step, hysteresis, predictive, perceptual"
@@ -40,15 +62,21 @@ pub enum ConfigError {
     /// The controller has no option with this name.
     #[error("controller `{controller}` has no option `{key}`: it takes {expected}")]
     UnknownOption {
+        /// The controller's name.
         controller: &'static str,
+        /// The option given.
         key: String,
+        /// The options it takes, for the message.
         expected: &'static str,
     },
     /// An option's value could not be parsed or is out of range.
     #[error("option `{key}` = `{value}` is invalid: {why}")]
     BadOption {
+        /// The option's name.
         key: String,
+        /// The value given.
         value: String,
+        /// Why it was refused.
         why: String,
     },
 }

@@ -61,8 +61,11 @@ impl LadderPoint {
 /// The reference a ladder was calibrated against.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Reference {
+    /// Eye rays per pixel of the reference.
     pub spp: f32,
+    /// Reflection depth of the reference.
     pub depth: u32,
+    /// Resolution scale of the reference, in (0, 1].
     pub scale: f32,
 }
 

@@ -27,6 +27,7 @@ pub struct FrameRecord {
 /// given; times in ms. Serializable for `summary.json`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunSummary {
+    /// Frames in the run.
     pub frames: usize,
     /// Frames with Tmin <= Tp <= Tmax.
     pub in_band_pct: f64,
@@ -38,18 +39,24 @@ pub struct RunSummary {
     pub under_at_max_pct: f64,
     /// Frames where no controller could do better: in_band_pct + under_at_max_pct.
     pub ok_pct: f64,
+    /// Mean Tp.
     pub tp_mean: f64,
     /// Population standard deviation.
     pub tp_std: f64,
+    /// Median Tp.
     pub tp_p50: f64,
+    /// 95th percentile of Tp.
     pub tp_p95: f64,
+    /// 99th percentile of Tp.
     pub tp_p99: f64,
+    /// Largest Tp.
     pub tp_max: f64,
     /// Frames whose quality differs from the previous frame's.
     pub quality_changes: usize,
     /// Flips of the direction of quality change (up then down, or down then up), directions
     /// taken from [`Quality::cmp_level`].
     pub reversals: usize,
+    /// `reversals` per 100 frames.
     pub reversals_per_100: f64,
     /// The longest run of consecutive frames over Tmax.
     pub longest_over_run: usize,
@@ -58,12 +65,17 @@ pub struct RunSummary {
     /// Mean and largest frames from a load change until Tp is back in the band (or under it
     /// at the highest quality) and stays there [`SETTLE_HOLD`] frames; over settled events.
     pub settle_mean: Option<f64>,
+    /// `None` when no event settled.
     pub settle_max: Option<usize>,
     /// Events after which the run never settled before its end.
     pub unsettled: usize,
+    /// Mean eye rays per pixel (S) over the frames.
     pub mean_spp: f64,
+    /// Mean reflection depth (R) over the frames.
     pub mean_depth: f64,
+    /// Mean resolution scale over the frames.
     pub mean_scale: f64,
+    /// All rays traced in the run (every depth and shadow rays).
     pub rays_total: u64,
     /// Rays traced per second of render time.
     pub rays_per_s: f64,

@@ -79,6 +79,7 @@ impl fmt::Display for Metric {
 /// A quality model over (speed, frame time, ladder point): see the module documentation.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MotionModel {
+    /// What the scores measure, and so whether higher or lower is better.
     pub metric: Metric,
     /// The scene the stimuli showed.
     pub scene: String,

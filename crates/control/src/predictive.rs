@@ -100,7 +100,7 @@ pub struct PredictiveParams {
     /// `trend`: weight of the newest growth in the load trend, 0 to disable. Default 0.5.
     pub trend: f64,
     /// `measured_cut`: [`DRIFT_FRAMES`] frames in a row (more on a noisy machine, see
-    /// [`Predictive::drift_frames`]) measured above the inner band trigger
+    /// `Predictive::drift_frames`) measured above the inner band trigger
     /// a cut even when the model still predicts the quality fits (the model lags a cost that
     /// drifts with the view). Without it only frames over Tmax do. Default true.
     pub measured_cut: bool,
@@ -193,9 +193,11 @@ impl PredictiveParams {
 /// Where the predictive controller aims: a target time and the inner band around it, ms.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aim {
+    /// The Tp, ms, a new quality's predicted time is aimed at.
     pub target_ms: f64,
     /// The quality is kept while its predicted time lies in [low_ms, high_ms].
     pub low_ms: f64,
+    /// Top of the inner band, ms (`low_ms` is its bottom).
     pub high_ms: f64,
 }
 

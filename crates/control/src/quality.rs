@@ -15,8 +15,11 @@ use std::str::FromStr;
 /// - `scale`: the resolution scale in (0, 1]; the frame has about scale² of the full pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Quality {
+    /// Eye rays per pixel (S); may be fractional.
     pub spp: f32,
+    /// Reflection depth (R): the most reflection/refraction events on a path (0: local shading).
     pub depth: u32,
+    /// Resolution scale in (0, 1].
     pub scale: f32,
 }
 
@@ -176,11 +179,17 @@ impl fmt::Display for KnobOrder {
 /// The range each knob may take. Default: S in [1, 256], R in [0, 16], scale in [0.25, 1].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Bounds {
+    /// Fewest eye rays per pixel, at least 1.
     pub spp_min: f32,
+    /// Most eye rays per pixel.
     pub spp_max: f32,
+    /// Smallest reflection depth.
     pub depth_min: u32,
+    /// Largest reflection depth.
     pub depth_max: u32,
+    /// Smallest resolution scale, > 0.
     pub scale_min: f32,
+    /// Largest resolution scale, at most 1.
     pub scale_max: f32,
 }
 

@@ -139,21 +139,31 @@ pub enum LoadProfile {
     Constant(Load),
     /// `before` until frame `at`, then `after` (a sudden change, e.g. 2x the rays).
     Step {
+        /// The load up to frame `at`.
         before: Load,
+        /// The load from frame `at` on.
         after: Load,
+        /// The first frame of `after`.
         at: usize,
     },
     /// `during` from frame `from` until (not including) frame `until`, `base` before and
     /// after: objects that appear at once and vanish again (a swarm, see
     /// [`Load::with_swarm`]).
     Interval {
+        /// The load outside the interval.
         base: Load,
+        /// The load inside it.
         during: Load,
+        /// The first frame of `during`.
         from: usize,
+        /// The first frame after it.
         until: usize,
     },
     /// The corridor sweep: frame k of `frames` has yaw θ = 2π·k/frames.
-    Corridor { frames: usize },
+    Corridor {
+        /// Frames in one turn of the sweep.
+        frames: usize,
+    },
     /// One load per frame (repeated cyclically).
     Frames(Vec<Load>),
 }

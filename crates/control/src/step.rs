@@ -53,6 +53,7 @@ impl fmt::Display for StepKnob {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub struct StepParams {
+    /// Which knob each step turns.
     pub knob: StepKnob,
 }
 

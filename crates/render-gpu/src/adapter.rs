@@ -15,11 +15,15 @@ pub struct GpuOptions {
 /// The kind of device behind an adapter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DeviceKind {
+    /// A separate graphics card.
     DiscreteGpu,
+    /// A GPU sharing the CPU's package and memory.
     IntegratedGpu,
+    /// A virtual or hosted GPU, as the driver reports it.
     VirtualGpu,
     /// A software rasteriser on the CPU (lavapipe, llvmpipe, SwiftShader, WARP).
     Cpu,
+    /// Anything the driver does not classify.
     Other,
 }
 
@@ -31,6 +35,7 @@ pub struct AdapterSummary {
     pub name: String,
     /// The graphics API wgpu reaches it through: "vulkan", "metal", "dx12" or "gl".
     pub backend: String,
+    /// What kind of device it is.
     pub device_type: DeviceKind,
     /// Driver name and version, where the backend reports them.
     pub driver: String,

@@ -66,24 +66,35 @@ pub const MAT_EMISSIVE: u32 = 3;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuFrame {
+    /// The camera's eye, world space.
     pub eye: [f32; 3],
+    /// tan(vfov / 2) · aspect.
     pub half_width: f32,
+    /// Unit view direction.
     pub forward: [f32; 3],
+    /// tan(vfov / 2).
     pub half_height: f32,
+    /// Unit vector to the image's right.
     pub right: [f32; 3],
     /// S, fractional.
     pub spp: f32,
+    /// Unit vector to the image's top.
     pub true_up: [f32; 3],
+    /// Ambient term, a fraction of the albedo.
     pub ambient: f32,
+    /// Radiance of rays that leave the scene, linear RGB.
     pub background: [f32; 3],
     /// R.
     pub max_depth: u32,
+    /// The rendered image's width, pixels.
     pub width: u32,
+    /// The rendered image's height, pixels.
     pub height: u32,
     /// Planes: the first `plane_count` shapes.
     pub plane_count: u32,
     /// Leaves of the top level (0: it is empty and not traversed).
     pub leaf_count: u32,
+    /// Lights in the light buffer.
     pub light_count: u32,
     /// Workgroups along x.
     pub groups_x: u32,
@@ -102,7 +113,9 @@ pub struct GpuFrame {
     /// The frame's index in a still view (`TemporalFrame::still_frame`), else 0: its
     /// samples take new positions (`temporal::still_sample`).
     pub still_frame: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad2: u32,
 }
 
@@ -111,9 +124,13 @@ pub struct GpuFrame {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuSampleRange {
+    /// The first sample index traced.
     pub first: u32,
+    /// One past the last sample index traced.
     pub end: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
 }
 
@@ -128,15 +145,21 @@ pub struct GpuSampleRange {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuShape {
+    /// Sphere centre, quad corner or plane point, world space.
     pub p0: [f32; 3],
     /// `SHAPE_*`.
     pub kind: u32,
+    /// Quad: unit normal of edge_u × edge_v; plane: unit normal.
     pub p1: [f32; 3],
     /// Index into the material buffer.
     pub material: u32,
+    /// Quad: the dual vector giving a; plane: checker axis a.
     pub p2: [f32; 3],
+    /// Sphere: r²; quad: |edge_u|.
     pub s0: f32,
+    /// Quad: the dual vector giving b; plane: checker axis b.
     pub p3: [f32; 3],
+    /// Sphere: 1 / r; quad: |edge_v|.
     pub s1: f32,
 }
 
@@ -147,13 +170,21 @@ pub struct GpuShape {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {
+    /// First corner.
     pub v0: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Second corner.
     pub v1: [f32; 3],
+    /// The triangle's index in its mesh (the tie-break).
     pub id: u32,
+    /// Third corner.
     pub v2: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
+    /// Unit normal, normalize((v1 - v0) × (v2 - v0)).
     pub normal: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad2: u32,
 }
 
@@ -163,7 +194,9 @@ pub struct GpuTriangle {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTopLeaf {
+    /// Index into the shape buffer, or into the instance buffer with [`TOP_INSTANCE`] set.
     pub index: u32,
+    /// Tie-break between hits at the same t: the lowest key wins.
     pub key: u32,
 }
 
@@ -175,18 +208,31 @@ pub struct GpuTopLeaf {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuInstance {
+    /// Row x of the world-to-mesh map (x, y, z, translation).
     pub to_mesh_x: [f32; 4],
+    /// Row y of the world-to-mesh map.
     pub to_mesh_y: [f32; 4],
+    /// Row z of the world-to-mesh map.
     pub to_mesh_z: [f32; 4],
+    /// Row x of the cofactor matrix taking mesh normals to the world.
     pub normal_x: [f32; 3],
+    /// The mesh's first node in the node buffer.
     pub node_base: u32,
+    /// Row y of the normal matrix.
     pub normal_y: [f32; 3],
+    /// The mesh's first triangle in the triangle buffer.
     pub tri_base: u32,
+    /// Row z of the normal matrix.
     pub normal_z: [f32; 3],
+    /// Index into the material buffer.
     pub material: u32,
+    /// 1 when the mesh is in world space already (no transform), else 0.
     pub baked: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad2: u32,
 }
 
@@ -195,15 +241,21 @@ pub struct GpuInstance {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
+    /// Albedo, reflectance, tint or radiance by `kind`, linear RGB.
     pub colour: [f32; 3],
     /// `MAT_*`.
     pub kind: u32,
+    /// Albedo of a checker's odd squares.
     pub colour_b: [f32; 3],
+    /// Side of a checker square, metres (0: no checker).
     pub checker_size: f32,
     /// Index of refraction (dielectrics).
     pub ior: f32,
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad2: u32,
 }
 
@@ -211,9 +263,13 @@ pub struct GpuMaterial {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLight {
+    /// World-space position.
     pub position: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad0: f32,
+    /// Linear RGB intensity: the irradiance at 1 m, head on.
     pub intensity: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad1: f32,
 }
 
@@ -223,13 +279,21 @@ pub struct GpuLight {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuCastParams {
+    /// The camera's eye, world space.
     pub eye: [f32; 3],
+    /// tan(vfov / 2) · aspect.
     pub half_width: f32,
+    /// Unit view direction.
     pub forward: [f32; 3],
+    /// tan(vfov / 2).
     pub half_height: f32,
+    /// Unit vector to the image's right.
     pub right: [f32; 3],
+    /// Image width, pixels.
     pub width: u32,
+    /// Unit vector to the image's top.
     pub true_up: [f32; 3],
+    /// Image height, pixels.
     pub height: u32,
     /// Tiles per image row.
     pub tiles_x: u32,
@@ -237,6 +301,7 @@ pub struct GpuCastParams {
     pub tile_count: u32,
     /// Rays in the ray list.
     pub ray_count: u32,
+    /// Triangles in the mesh.
     pub triangle_count: u32,
 }
 
@@ -245,13 +310,21 @@ pub struct GpuCastParams {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuCameraView {
+    /// The camera's eye, world space.
     pub eye: [f32; 3],
+    /// tan(vfov / 2) · aspect.
     pub half_width: f32,
+    /// Unit view direction.
     pub forward: [f32; 3],
+    /// tan(vfov / 2).
     pub half_height: f32,
+    /// Unit vector to the image's right.
     pub right: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Unit vector to the image's top.
     pub true_up: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
 }
 
@@ -275,13 +348,17 @@ impl From<&CameraFrame> for GpuCameraView {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTemporalParams {
+    /// This frame's camera, for the history's size.
     pub current: GpuCameraView,
+    /// The previous frame's camera, for the history's size.
     pub previous: GpuCameraView,
     /// The history's size.
     pub width: u32,
+    /// The history's height, pixels.
     pub height: u32,
     /// The rendered frame's size.
     pub low_width: u32,
+    /// The rendered frame's height, pixels.
     pub low_height: u32,
     /// Where a frame pixel's value lands inside it.
     pub anchor: [f32; 2],
@@ -293,14 +370,18 @@ pub struct GpuTemporalParams {
     pub still: u32,
     /// 1 when objects may have moved: `surface_count` entries of the motion table say how.
     pub world_moved: u32,
+    /// Entries in the motion table.
     pub surface_count: u32,
     /// The frame's eye rays per pixel S (a frame pixel's sample count weighs its value).
     pub spp: f32,
     /// How strongly the history is sharpened for display
     /// (`steadyray_render::temporal::sharpen_strength`; 0: not at all).
     pub sharpen: f32,
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
+    /// Padding for WGSL alignment (unused).
     pub pad2: u32,
 }
 
@@ -309,13 +390,18 @@ pub struct GpuTemporalParams {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuWarpParams {
+    /// The camera of the history's last frame.
     pub history_view: GpuCameraView,
+    /// The camera at this refresh.
     pub refresh_view: GpuCameraView,
+    /// The history's width, pixels.
     pub width: u32,
+    /// The history's height, pixels.
     pub height: u32,
     /// How strongly the history's frame has it sharpened for display, and so the warp
     /// (`steadyray_render::temporal::sharpen_strength`; 0: not at all).
     pub sharpen: f32,
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
 }
 
@@ -332,14 +418,23 @@ pub const SURFACE_NEW: u32 = 2;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuSurfaceMotion {
+    /// Row x of the map from a point now to where it was in the previous frame.
     pub p_x: [f32; 4],
+    /// Row y of the point map.
     pub p_y: [f32; 4],
+    /// Row z of the point map.
     pub p_z: [f32; 4],
+    /// Row x of the map taking normals back to the previous frame.
     pub n_x: [f32; 3],
+    /// `SURFACE_*`.
     pub kind: u32,
+    /// Row y of the normal map.
     pub n_y: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Row z of the normal map.
     pub n_z: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
 }
 
@@ -373,9 +468,13 @@ impl From<&SurfaceMove> for GpuSurfaceMotion {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuCastRay {
+    /// Ray origin, world space.
     pub origin: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad0: u32,
+    /// Ray direction.
     pub dir: [f32; 3],
+    /// Padding for WGSL alignment (unused).
     pub pad1: u32,
 }
 
@@ -384,7 +483,9 @@ pub struct GpuCastRay {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuCastHit {
+    /// Distance along the ray to the hit (in units of `dir`).
     pub t: f32,
+    /// The hit triangle's input index, or [`CAST_MISS`].
     pub id: u32,
 }
 

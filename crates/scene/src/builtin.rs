@@ -11,8 +11,11 @@ pub const DEFAULT_SCENE: &str = "corridor";
 /// A built-in scene: its name, a one-line description (for `steadyray scenes`) and its TOML.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BuiltinScene {
+    /// The name `--scene` takes and the scene's `name`.
     pub name: &'static str,
+    /// One line for `steadyray scenes`.
     pub description: &'static str,
+    /// The scene file's text, in the TOML scene format.
     pub toml: &'static str,
 }
 

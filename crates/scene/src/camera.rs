@@ -5,6 +5,7 @@ use glam::Vec3;
 /// A pinhole camera looking from `eye` along `forward`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
+    /// The centre of projection, world space.
     pub eye: Vec3,
     /// Unit view direction.
     pub forward: Vec3,
@@ -18,9 +19,13 @@ pub struct Camera {
 /// computed once per frame and shared by every ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraFrame {
+    /// The centre of projection, world space.
     pub eye: Vec3,
+    /// Unit view direction.
     pub forward: Vec3,
+    /// Unit vector to the image's right (`forward` × `up`, normalized).
     pub right: Vec3,
+    /// Unit vector to the image's top, orthogonal to `forward` and `right`.
     pub true_up: Vec3,
     /// tan(vfov / 2) · aspect
     pub half_width: f32,

@@ -28,6 +28,7 @@ pub struct SceneError {
     pub origin: String,
     /// 1-based line in the scene file, where the problem has one.
     pub line: Option<usize>,
+    /// The class of problem, for callers that react to it (the message says it for people).
     pub kind: SceneErrorKind,
     /// What is wrong, naming the object concerned (`shape "red": ...`).
     pub message: String,

@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 /// A mesh ready for a scene, with what the import had to leave out.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImportedMesh {
+    /// The mesh, in its own (model) space.
     pub mesh: TriangleMesh,
     /// Triangles dropped because their area is zero (repeated or collinear corners).
     pub degenerate_dropped: usize,
@@ -18,16 +19,28 @@ pub struct ImportedMesh {
 /// What is wrong with a mesh's data, wherever it came from.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MeshProblem {
+    /// A vertex position is NaN or infinite.
     #[error("vertex {vertex} is not finite: {position:?}")]
-    NonFinite { vertex: usize, position: [f32; 3] },
+    NonFinite {
+        /// The vertex's index.
+        vertex: usize,
+        /// Its position as read.
+        position: [f32; 3],
+    },
+    /// A triangle names a vertex that does not exist.
     #[error("triangle {triangle} refers to vertex {index}, but there are only {vertices} vertices")]
     IndexOutOfRange {
+        /// The triangle's index.
         triangle: usize,
+        /// The vertex index it names.
         index: u32,
+        /// How many vertices there are.
         vertices: usize,
     },
+    /// The mesh has no triangles at all.
     #[error("mesh has no triangles")]
     Empty,
+    /// Every triangle has zero area (the count is the field).
     #[error("all {0} triangles are degenerate (zero area)")]
     AllDegenerate(usize),
 }
@@ -35,22 +48,44 @@ pub enum MeshProblem {
 /// Why a mesh file could not be imported; every variant names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum MeshImportError {
+    /// The file could not be read.
     #[error("mesh file {}: cannot read: {source}", path.display())]
     Read {
+        /// The file.
         path: PathBuf,
+        /// The read error.
         source: std::io::Error,
     },
+    /// The file's extension is none of `.obj`, `.gltf`, `.glb`.
     #[error("mesh file {}: unsupported format (only .obj, .gltf and .glb are supported)", path.display())]
-    Unsupported { path: PathBuf },
+    Unsupported {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The glTF reader refused the file.
     #[error("mesh file {}: malformed glTF: {reason}", path.display())]
-    Gltf { path: PathBuf, reason: String },
+    Gltf {
+        /// The file.
+        path: PathBuf,
+        /// The glTF reader's message.
+        reason: String,
+    },
+    /// The OBJ reader refused the file.
     #[error("mesh file {}: malformed OBJ: {reason}", path.display())]
     Obj {
+        /// The file.
         path: PathBuf,
+        /// The OBJ reader's error.
         reason: tobj::LoadError,
     },
+    /// The file was read, but its mesh is unusable.
     #[error("mesh file {}: {problem}", path.display())]
-    Invalid { path: PathBuf, problem: MeshProblem },
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with its mesh.
+        problem: MeshProblem,
+    },
 }
 
 /// One material's share of a mesh file, ready for a scene.
@@ -59,6 +94,7 @@ pub struct MeshPart {
     /// Index into [`ImportedParts::materials`]; `None` for triangles without a material
     /// (all of an OBJ file; glTF primitives that name no material).
     pub material: Option<usize>,
+    /// This material's triangles, in the mesh's own (model) space.
     pub mesh: TriangleMesh,
 }
 

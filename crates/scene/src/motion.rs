@@ -35,7 +35,9 @@ pub struct Motion {
 pub struct MotionKey {
     /// Seconds.
     pub t: f64,
+    /// World-space translation; `None`: this key does not give it.
     pub translate: Option<Vec3>,
+    /// Rotation about +y, degrees; `None`: this key does not give it.
     pub rotate_y_deg: Option<f32>,
     /// Per axis; a sphere's is uniform.
     pub scale: Option<Vec3>,

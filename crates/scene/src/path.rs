@@ -13,6 +13,7 @@ use std::f32::consts::TAU;
 /// A camera path: its motion, its default number of frames and its duration.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CameraPath {
+    /// How the camera moves.
     pub motion: PathMotion,
     /// The number of frames `bench` shows of it by default.
     pub frames: u32,
@@ -29,8 +30,11 @@ pub enum PathMotion {
     /// Circles `center` at `radius` and `height` (above the centre), looking at the centre;
     /// frame k of N is at angle 2π·k/N, starting on the +z side.
     Orbit {
+        /// The point circled and looked at, world space.
         center: Vec3,
+        /// The circle's radius, metres.
         radius: f32,
+        /// The eye's height above `center`, metres.
         height: f32,
     },
     /// The sweep's eye and pitch with the yaw turning at the speeds of [`PANS`]: holds, slow
@@ -46,7 +50,9 @@ pub enum PathMotion {
 /// One stretch of the `pans` path: for `seconds`, the yaw turns at `deg_per_s`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stretch {
+    /// The stretch's length, s.
     pub seconds: f64,
+    /// Yaw speed over the stretch, degrees per second (0: a hold).
     pub deg_per_s: f64,
 }
 
@@ -98,6 +104,7 @@ pub struct KeyedPath {
     /// At least two, times strictly increasing from 0, all looking the same way (all with
     /// a target or all with yaw and pitch).
     pub keys: Vec<CameraKey>,
+    /// Whether the path runs from the last key back to the first (see above).
     pub looped: bool,
 }
 
@@ -106,7 +113,9 @@ pub struct KeyedPath {
 pub struct CameraKey {
     /// Seconds.
     pub t: f64,
+    /// The camera's position, world space.
     pub eye: Vec3,
+    /// Where the camera looks.
     pub look: KeyLook,
     /// Vertical field of view in degrees; `None`: interpolated from the keys that give one,
     /// or the scene camera's when none does.
@@ -119,7 +128,12 @@ pub enum KeyLook {
     /// At a point.
     Target(Vec3),
     /// Along yaw and pitch in degrees, as the scene camera's `yaw_deg` and `pitch_deg`.
-    YawPitch { yaw_deg: f32, pitch_deg: f32 },
+    YawPitch {
+        /// Yaw, degrees.
+        yaw_deg: f32,
+        /// Pitch, degrees.
+        pitch_deg: f32,
+    },
 }
 
 impl CameraPath {

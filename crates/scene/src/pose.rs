@@ -8,22 +8,34 @@ use glam::{DAffine3, DVec3, Vec3};
 /// An object's shape at one moment, in world space.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Pose<'a> {
+    /// A sphere where its motion puts it.
     Sphere {
+        /// World-space centre.
         center: Vec3,
+        /// Radius, metres.
         radius: f32,
     },
+    /// A parallelogram, as [`Shape::Quad`].
     Quad {
+        /// World-space corner.
         corner: Vec3,
+        /// First edge from `corner`.
         edge_u: Vec3,
+        /// Second edge from `corner`.
         edge_v: Vec3,
     },
+    /// An infinite plane, as [`Shape::Plane`].
     Plane {
+        /// A world-space point on the plane.
         point: Vec3,
+        /// Unit normal.
         normal: Vec3,
     },
     /// The mesh in model space and, per copy, the map from model space to the world.
     Mesh {
+        /// The shape's mesh, unchanged.
         mesh: &'a TriangleMesh,
+        /// Model space to world, one per copy (one per instance, or a single one).
         copies: Vec<DAffine3>,
     },
 }

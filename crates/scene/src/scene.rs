@@ -7,8 +7,11 @@ use glam::Vec3;
 /// and how it moves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Object {
+    /// Unique among a loaded scene's objects; messages and the writer use it.
     pub name: String,
+    /// The geometry, in world space (meshes with their placement).
     pub shape: Shape,
+    /// Index into `Scene::materials`.
     pub material: usize,
     /// `None`: the object never moves and always exists.
     pub motion: Option<Motion>,
@@ -29,10 +32,13 @@ impl Object {
 /// A complete, validated scene, ready for any renderer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
+    /// The scene's name (a built-in's name, or what its file gives).
     pub name: String,
     /// Named materials; objects refer to them by index.
     pub materials: Vec<(String, Material)>,
+    /// The objects, in the file's order.
     pub objects: Vec<Object>,
+    /// The point lights.
     pub lights: Vec<PointLight>,
     /// Ambient term, as a fraction of the albedo (`docs/shading.md`).
     pub ambient: f32,

@@ -7,25 +7,34 @@ use glam::Vec3;
 /// One geometric primitive of a scene.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
+    /// A sphere.
     Sphere {
+        /// Centre, world space.
         center: Vec3,
+        /// Radius, metres (> 0).
         radius: f32,
     },
     /// A two-sided parallelogram: the points `corner + a·edge_u + b·edge_v`, a, b in [0, 1].
     /// Its surface coordinates (for checkers) are metres along the two edges.
     Quad {
+        /// A corner, world space.
         corner: Vec3,
+        /// The first edge from `corner`.
         edge_u: Vec3,
+        /// The second edge from `corner`.
         edge_v: Vec3,
     },
     /// A two-sided infinite plane through `point` with unit `normal`.
     Plane {
+        /// A point on the plane, world space.
         point: Vec3,
+        /// Unit normal (either side: the plane is two-sided).
         normal: Vec3,
     },
     /// A triangle mesh, put in the world by `placement`, in one copy or in one copy per
     /// instance.
     Mesh {
+        /// The mesh in its own (model) space.
         mesh: TriangleMesh,
         /// Model space to world: the shape's `scale`, `rotate_y_deg` and `translate`.
         placement: Transform,
@@ -62,7 +71,9 @@ impl Shape {
 /// import.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct TriangleMesh {
+    /// Corner positions.
     pub positions: Vec<Vec3>,
+    /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
 }
 

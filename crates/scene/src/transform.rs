@@ -7,7 +7,9 @@ use glam::{DAffine3, DMat3, DVec3, Vec3};
 /// then a translation. The identity transform leaves positions bit-for-bit unchanged.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform {
+    /// Translation, applied last.
     pub translate: Vec3,
+    /// Per-axis scale, applied first.
     pub scale: Vec3,
     /// Right-handed rotation about the +y axis, in degrees.
     pub rotate_y_deg: f32,

@@ -28,6 +28,7 @@ const MIN_SPELL_SIGMA: f64 = 1e-3;
 /// A fitted profile with the measurements it came from.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NoiseFit {
+    /// The fitted profile.
     pub profile: NoiseProfile,
     /// Frames against the mean of their neighbours: the ratio's 5th, 50th, 95th and 99th
     /// percentiles (all runs together).
@@ -37,6 +38,7 @@ pub struct NoiseFit {
     pub run_ratio: Option<[f64; 3]>,
     /// Frames counted as spikes, and frames looked at.
     pub spikes: usize,
+    /// Frames looked at (all runs together).
     pub frames: usize,
 }
 
@@ -47,6 +49,7 @@ pub struct SpikeFit {
     pub prob: f64,
     /// Mean and standard deviation of their log factor.
     pub log_mean: f64,
+    /// Standard deviation of the spikes' log factor.
     pub log_sd: f64,
 }
 

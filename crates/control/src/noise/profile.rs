@@ -10,19 +10,37 @@ pub enum NoiseError {
     /// A parameter is NaN, infinite or outside its range.
     #[error("noise parameter {name} = {value} is invalid: it must be {expected}")]
     BadParameter {
+        /// The parameter's name.
         name: &'static str,
+        /// The value given.
         value: f64,
+        /// The accepted range, for the message.
         expected: &'static str,
     },
     /// Too few frames to estimate anything.
     #[error("{got} frames are too few to fit a noise profile: at least {needed} are needed")]
-    TooFewFrames { got: usize, needed: usize },
+    TooFewFrames {
+        /// Frames given.
+        got: usize,
+        /// The fewest frames a fit accepts.
+        needed: usize,
+    },
     /// A frame time is NaN, infinite, zero or negative.
     #[error("frame {index} has time {value} ms: frame times must be finite and above 0")]
-    BadFrameTime { index: usize, value: f64 },
+    BadFrameTime {
+        /// The frame's index in its run.
+        index: usize,
+        /// Its time, ms.
+        value: f64,
+    },
     /// The two runs of a spell fit do not hold the same frames.
     #[error("the two runs hold {first} and {second} frames: a spell fit needs the same frames")]
-    RunsDiffer { first: usize, second: usize },
+    RunsDiffer {
+        /// Frames in the first run.
+        first: usize,
+        /// Frames in the second run.
+        second: usize,
+    },
 }
 
 /// The parameters of a machine's timing noise (see the module documentation of

@@ -16,7 +16,9 @@ pub struct DisplayImage<'a> {
     /// read-only storage buffer; it may be larger than the image and is replaced when a
     /// larger frame is rendered.
     pub buffer: &'a wgpu::Buffer,
+    /// The image's width, pixels.
     pub width: u32,
+    /// The image's height, pixels.
     pub height: u32,
 }
 
