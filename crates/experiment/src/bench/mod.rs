@@ -7,6 +7,9 @@
 //! against a reference of the same view (rendered before the runs, [`quality`]);
 //! `--record DIR` keeps every delivered frame for playback ([`playback`]).
 //!
+//! `--repeat N` runs the whole experiment N times, each repetition a fresh run into its own
+//! folder, and reports every figure's median and range over them ([`repeat`]).
+//!
 //! `--clock real` runs each controller for a span of display time on the display model
 //! instead ([`real_clock`], `docs/display.md`): the table, `summary.json` and `table.md` then
 //! say what the viewer saw (frames shown per second, repeats, pacing, latency); `--quality`
