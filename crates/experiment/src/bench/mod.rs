@@ -7,6 +7,9 @@
 //! against a reference of the same view (rendered before the runs, [`quality`]);
 //! `--record DIR` keeps every delivered frame for playback ([`playback`]).
 //!
+//! `--repeat N` runs the whole experiment N times, each repetition a fresh run into its own
+//! folder, and reports every figure's median and range over them ([`repeat`]).
+//!
 //! `--clock real` runs each controller for a span of display time on the display model
 //! instead ([`real_clock`], `docs/display.md`): the table, `summary.json` and `table.md` then
 //! say what the viewer saw (frames shown per second, repeats, pacing, latency); `--quality`
@@ -26,6 +29,8 @@ pub mod plot;
 pub mod quality;
 pub mod real_clock;
 pub mod record;
+pub mod repeat;
+pub mod repeat_summary;
 pub mod report;
 pub mod runs;
 pub mod screen;
@@ -140,6 +145,12 @@ pub struct BenchConfig {
     /// tool (scripts/jod/). References already in DIR/reference for the same set-up are
     /// reused.
     pub video: Option<PathBuf>,
+    /// Runs the whole experiment this many times, each repetition a fresh run (its own
+    /// renderer, costs measured before the runs and best fixed search) into
+    /// `OUT/repeat-K/`, and reports per controller the median and range of every figure
+    /// over the repetitions (`OUT/summary.json`, `OUT/table.md`, [`repeat`]). 1: one run
+    /// written into `OUT` itself.
+    pub repeat: u32,
 }
 
 impl Default for BenchConfig {
@@ -174,6 +185,7 @@ impl Default for BenchConfig {
             temporal: TemporalChoice::Off,
             warp: false,
             video: None,
+            repeat: 1,
         }
     }
 }
@@ -192,18 +204,28 @@ fn default_resolution(backend: &str, device: &str) -> (u32, u32) {
     }
 }
 
-/// Runs the experiment and writes its reports, phase by phase: the configuration checked
+/// Runs the experiment and writes its reports: once into `config.out`, or `config.repeat`
+/// times with the repetitions' medians and ranges beside them ([`repeat::run_repeated`]).
+pub fn run(config: &BenchConfig) -> Result<()> {
+    match config.repeat {
+        1 => run_once(config, 1),
+        _ => repeat::run_repeated(config),
+    }
+}
+
+/// Runs the experiment once (repetition `repetition`, counted from 1, which seeds the
+/// simulated renderer's noise) and writes its reports, phase by phase: the configuration checked
 /// ([`Plan::check`]), the frames' source opened, the costs the bands need measured before
 /// the runs ([`measure_costs`]), the bands and arms ([`Bands::derive`], [`build_arms`]),
 /// the references of the frame clock's measured frames, the runs ([`Runner::run_arms`]),
 /// the real clock's screen references and displayed quality ([`measure_screens`]), and the
 /// outputs ([`write_outputs`]).
-pub fn run(config: &BenchConfig) -> Result<()> {
+pub fn run_once(config: &BenchConfig, repetition: u32) -> Result<()> {
     let mut plan = Plan::check(config)?;
     if let Some(dir) = &config.video {
         video::prepare(dir)?;
     }
-    let (mut source, scene) = open_source(config)?;
+    let (mut source, scene) = open_repetition_source(config, repetition)?;
     let costs = measure_costs(config, &mut plan, source.as_mut())?;
     let bands = Bands::derive(config, &plan, &costs)?;
     let mut arms = build_arms(config, &plan, &costs, &bands)?;
@@ -300,8 +322,18 @@ pub fn run(config: &BenchConfig) -> Result<()> {
 /// The source of the frames: the simulated renderer, or the scene on the configured
 /// renderer at the configured (or the backend's default) size; and the scene's name.
 pub fn open_source(config: &BenchConfig) -> Result<(Box<dyn FrameSource>, String)> {
+    open_repetition_source(config, 1)
+}
+
+/// [`open_source`] for repetition `repetition` (from 1) of a repeated bench: a fresh
+/// renderer, the simulated one's noise seeded with the repetition's number, so repetition 1
+/// draws as a single run and the others draw noise of their own, as fresh runs do.
+fn open_repetition_source(
+    config: &BenchConfig,
+    repetition: u32,
+) -> Result<(Box<dyn FrameSource>, String)> {
     if config.simulate {
-        let source = source::simulated(config.frames);
+        let source = source::simulated_seeded(config.frames, u64::from(repetition));
         return Ok((Box::new(source), "corridor (simulated)".into()));
     }
     let scene = config.scene.load()?;

@@ -234,8 +234,8 @@ pub fn write_json(value: &serde_json::Value, path: &Path) -> Result<()> {
     std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
 }
 
-/// The real clock's table, one row per controller: header, `summary.json` key, decimals.
-const DISPLAY_COLUMNS: [(&str, &str, usize); 13] = [
+/// The real clock's table, one column per figure: header, `summary.json` key, decimals.
+pub const DISPLAY_COLUMNS: [(&str, &str, usize); 13] = [
     ("frames", "frames_rendered", 0),
     ("shown fps", "displayed_fps", 1),
     ("repeated %", "repeated_pct", 1),

@@ -369,6 +369,18 @@ pub fn simulated(n: u32) -> SimulatedSource {
     }
 }
 
+/// [`simulated`] with its noise drawn from `seed` (the corridor model's own seed is 1).
+pub fn simulated_seeded(n: u32, seed: u64) -> SimulatedSource {
+    let model = RendererModel {
+        seed,
+        ..RendererModel::corridor(n as usize)
+    };
+    SimulatedSource {
+        renderer: SimRenderer::new(model),
+        frames: n,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

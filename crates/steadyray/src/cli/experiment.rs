@@ -130,6 +130,14 @@ pub struct BenchArgs {
     /// reused.
     #[arg(long, value_name = "DIR")]
     pub video: Option<PathBuf>,
+    /// Run the whole experiment N times, each repetition a fresh run into OUT/repeat-K/ (as
+    /// a single run writes OUT): its own renderer, and the costs measured before the runs
+    /// (hand-over, warped refresh, best fixed search) measured again; the simulated
+    /// renderer draws repetition K's noise from seed K. OUT/summary.json, OUT/table.md and
+    /// the table printed at the end give every figure per controller as median [min–max]
+    /// over the N runs (summary.json: {median, min, max, runs}). 1: a single run into OUT.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub repeat: u32,
 }
 
 impl From<&BenchArgs> for BenchConfig {
@@ -161,6 +169,7 @@ impl From<&BenchArgs> for BenchConfig {
             temporal: (&args.temporal).into(),
             warp: args.warp,
             video: args.video.clone(),
+            repeat: args.repeat,
         }
     }
 }
