@@ -15,3 +15,4 @@ pub mod frame_loop;
 pub mod jod;
 pub mod ray_dump;
 pub mod raybench;
+pub mod recommended;

@@ -14,7 +14,7 @@ fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Bench(args) => bench::run(&args.into()),
+        Command::Bench(args) => bench::run(&args.config()),
         Command::Render(args) => commands::render::run(args),
         Command::Scenes => {
             commands::scenes::run();

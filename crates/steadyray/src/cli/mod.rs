@@ -190,7 +190,12 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 3)]
     pub warmup: u32,
     /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance).
-    #[arg(short = 'o', long = "output", default_value = "render.png")]
+    #[arg(
+        short = 'o',
+        long = "out",
+        alias = "output",
+        default_value = "render.png"
+    )]
     pub output: PathBuf,
     /// The temporal mode (docs/temporal.md): render a sequence of FRAMES frames ending at the
     /// asked view, 1/--rate s apart on the camera path (the same view for --yaw or the
