@@ -42,7 +42,7 @@ pub enum ConfigError {
     UnknownOption {
         controller: &'static str,
         key: String,
-        expected: &'static str,
+        expected: String,
     },
     /// An option's value could not be parsed or is out of range.
     #[error("option `{key}` = `{value}` is invalid: {why}")]

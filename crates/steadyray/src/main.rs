@@ -21,6 +21,10 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Adapters => backend::print_adapters(),
+        Command::Controllers => {
+            print!("{}", steadyray_control::options::describe_controllers());
+            Ok(())
+        }
         Command::Compare(args) => compare::run(&args.into()),
         Command::Calibrate(args) => calibrate::run(&args.into()),
         Command::View(args) => view::run(args),

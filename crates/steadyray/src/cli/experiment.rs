@@ -42,7 +42,8 @@ pub struct BenchArgs {
     pub band: Option<RefreshBand>,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
     /// `step:knob=both`, `predictive:order=depth,spp` or `fixed:spp=4 depth=16`. The first
-    /// `fixed` also adds the best fixed quality (unless --no-best-fixed).
+    /// `fixed` also adds the best fixed quality (unless --no-best-fixed). `steadyray
+    /// controllers` lists every option.
     #[arg(
         long,
         default_value = "fixed,step,step:knob=both,hysteresis,predictive"

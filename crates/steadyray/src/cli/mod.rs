@@ -26,6 +26,9 @@ pub enum Command {
     Scenes,
     /// List the GPU adapters wgpu can see.
     Adapters,
+    /// List every controller with its options, their defaults and what each does (the
+    /// table the option parser uses).
+    Controllers,
     /// Compare two images (FLIP, PSNR, SSIM) and print them as one JSON line.
     Compare(experiment::CompareArgs),
     /// Measure (S, R, scale) settings' cost and FLIP over views of the camera path and write
