@@ -182,7 +182,7 @@ pub fn from_name_with(
                         return Err(ConfigError::UnknownOption {
                             controller: "fixed",
                             key: key.clone(),
-                            expected: "spp, depth, scale (the quality it holds)",
+                            expected: crate::options::expected_keys("fixed"),
                         });
                     }
                 }

@@ -67,7 +67,7 @@ pub enum ConfigError {
         /// The option given.
         key: String,
         /// The options it takes, for the message.
-        expected: &'static str,
+        expected: String,
     },
     /// An option's value could not be parsed or is out of range.
     #[error("option `{key}` = `{value}` is invalid: {why}")]

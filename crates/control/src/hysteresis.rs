@@ -71,9 +71,6 @@ impl Default for HysteresisParams {
     }
 }
 
-const HYSTERESIS_KEYS: &str = "order, target, cut_above, cut_after, raise_below, up_after, \
-                               max_up, min_interval, hitch_ratio";
-
 impl HysteresisParams {
     /// Sets one option by name (used by [`crate::from_name`]).
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), ConfigError> {
@@ -91,7 +88,7 @@ impl HysteresisParams {
                 return Err(ConfigError::UnknownOption {
                     controller: "hysteresis",
                     key: key.to_string(),
-                    expected: HYSTERESIS_KEYS,
+                    expected: crate::options::expected_keys("hysteresis"),
                 });
             }
         }

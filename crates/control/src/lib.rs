@@ -86,6 +86,7 @@ pub mod ladder;
 pub mod metrics;
 pub mod motion_model;
 pub mod noise;
+pub mod options;
 pub mod perceptual;
 pub mod predictive;
 pub mod quality;

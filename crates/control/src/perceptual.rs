@@ -100,10 +100,6 @@ impl Default for PerceptualParams {
     }
 }
 
-const PERCEPTUAL_KEYS: &str = "model, hold_ms, margin, fall_ms, hand_over, warp, slack, width, and predictive's options \
-                               (order, target, deadband, min_reach, max_raise, trend, \
-                               measured_cut, forgetting, outlier_k, confirm)";
-
 impl PerceptualParams {
     /// The defaults with the quality model `model` (the one option without a default).
     pub fn with_model(model: MotionModel) -> Self {
@@ -145,7 +141,7 @@ impl PerceptualParams {
                     ConfigError::UnknownOption { key, .. } => ConfigError::UnknownOption {
                         controller: "perceptual",
                         key,
-                        expected: PERCEPTUAL_KEYS,
+                        expected: crate::options::expected_keys("perceptual"),
                     },
                     other => other,
                 })?;

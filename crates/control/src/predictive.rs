@@ -134,9 +134,6 @@ impl Default for PredictiveParams {
     }
 }
 
-const PREDICTIVE_KEYS: &str = "order, target, deadband, min_reach, max_raise, trend, measured_cut, \
-                               trades, forgetting, outlier_k, confirm, ladder";
-
 impl PredictiveParams {
     /// Sets one option by name (used by [`crate::from_name`]); `ladder`, which names a file,
     /// is [`crate::from_name_with`]'s.
@@ -166,7 +163,7 @@ impl PredictiveParams {
                 return Err(ConfigError::UnknownOption {
                     controller: "predictive",
                     key: key.to_string(),
-                    expected: PREDICTIVE_KEYS,
+                    expected: crate::options::expected_keys("predictive"),
                 });
             }
         }

@@ -66,7 +66,7 @@ impl StepParams {
                 return Err(ConfigError::UnknownOption {
                     controller: "step",
                     key: key.to_string(),
-                    expected: "knob=depth|spp|both",
+                    expected: crate::options::expected_keys("step"),
                 });
             }
         }

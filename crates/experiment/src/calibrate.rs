@@ -10,7 +10,7 @@ use crate::calibrate_motion::{JodTool, MotionPlan, calibrate_motion, stimulus_co
 use crate::config::SceneConfig;
 use crate::frame_loop::FrameLoop;
 use anyhow::{Context, Result, bail};
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use std::path::Path;
 use std::path::PathBuf;
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference, pareto_front};
@@ -290,10 +290,9 @@ pub fn run(args: &CalibrateConfig) -> Result<()> {
         },
         temporal: args.temporal.map(|frames| (frames, args.rate)),
     };
-    let progress = ProgressBar::new(plan.settings().len() as u64 * u64::from(plan.views));
-    progress.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} renders, {msg} [{elapsed}]")
-            .expect("the progress template is valid"),
+    let progress = crate::progress::progress_bar(
+        plan.settings().len() as u64 * u64::from(plan.views),
+        "renders",
     );
     let ladder = calibrate(renderer.as_mut(), &scene, &plan, &progress)?;
     progress.finish_and_clear();
@@ -359,11 +358,7 @@ fn run_motion(args: &CalibrateConfig, renderer: &mut dyn Renderer, scene: &Scene
         }),
         warp: args.warp,
     };
-    let progress = ProgressBar::new(stimulus_count(&plan));
-    progress.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} stimuli, {msg} [{elapsed}]")
-            .expect("the progress template is valid"),
-    );
+    let progress = crate::progress::progress_bar(stimulus_count(&plan), "stimuli");
     let tables = calibrate_motion(renderer, scene, &plan, &progress)?;
     progress.finish_and_clear();
     print!("{}", motion_table(&tables.model));

@@ -13,6 +13,8 @@ pub mod config;
 pub mod files;
 pub mod frame_loop;
 pub mod jod;
+pub mod progress;
 pub mod ray_dump;
 pub mod raybench;
+pub mod recommended;
 pub mod suite;

@@ -29,7 +29,7 @@ use steadyray_render::TimingSource;
 use steadyray_render::sampling::{cosine_direction, pcg_hash, unit_from_hash};
 use steadyray_render_cpu::raycast::{Cast, T_MAX, cast_all};
 use steadyray_render_gpu::layout::GpuCastRay;
-use steadyray_render_gpu::{CastOutcome, GpuRayCaster};
+use steadyray_render_gpu::{CastOutcome, GpuOptions, GpuRayCaster, list_adapters};
 use steadyray_scene::Camera;
 use steadyray_scene::Transform;
 use steadyray_scene::mesh_import::import_mesh;
@@ -37,11 +37,57 @@ use steadyray_scene::mesh_import::import_mesh;
 /// Where `raybench` traces its rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RaybenchBackend {
+    /// A hardware GPU adapter where there is one (narrowed by `STEADYRAY_ADAPTER`), else the
+    /// CPU, as every rendering command's `--backend auto`.
+    Auto,
     /// The 8-wide BVH on the CPU, rayon tasks over chunks of rays.
     Cpu,
     /// The 4-wide BVH in WGSL on a GPU adapter (software ones such as lavapipe included;
     /// `STEADYRAY_ADAPTER=name` picks one by name).
     Gpu,
+}
+
+/// The tracer `backend` asks for, saying on stderr which one it picked; `auto` falls back
+/// to the CPU where no hardware adapter is present or it fails to start.
+fn open_tracer(
+    backend: RaybenchBackend,
+    corners: &[[Vec3; 3]],
+    bvh: &Bvh,
+) -> anyhow::Result<Tracer> {
+    let options = match backend {
+        RaybenchBackend::Cpu => return Ok(Tracer::Cpu),
+        RaybenchBackend::Gpu => requested_gpu_options(),
+        RaybenchBackend::Auto => {
+            let wanted = requested_gpu_options()
+                .adapter_name
+                .map(|n| n.to_lowercase());
+            let hardware = list_adapters().into_iter().find(|a| {
+                !a.is_software
+                    && wanted
+                        .as_deref()
+                        .is_none_or(|want| a.name.to_lowercase().contains(want))
+            });
+            let Some(adapter) = hardware else {
+                eprintln!("steadyray: raybench on the CPU (auto: no hardware GPU adapter)");
+                return Ok(Tracer::Cpu);
+            };
+            GpuOptions {
+                adapter_name: Some(adapter.name),
+                allow_software: false,
+            }
+        }
+    };
+    match GpuRayCaster::new(&options, corners, bvh) {
+        Ok(caster) => {
+            eprintln!("steadyray: raybench on {}", caster.device_description());
+            Ok(Tracer::Gpu(Box::new(caster)))
+        }
+        Err(e) if backend == RaybenchBackend::Auto => {
+            eprintln!("steadyray: raybench on the CPU (auto: the GPU failed to start: {e})");
+            Ok(Tracer::Cpu)
+        }
+        Err(e) => Err(anyhow::Error::new(e).context("the gpu backend is not available")),
+    }
 }
 
 /// What `raybench` measures: a mesh, a view and where to trace its rays.
@@ -260,15 +306,7 @@ pub fn run(args: &RaybenchConfig) -> anyhow::Result<()> {
         .install(|| Bvh::build(&corners))
         .with_context(|| format!("mesh file {}", args.mesh.display()))?;
     let build_s = start.elapsed().as_secs_f64();
-    let mut tracer = match args.backend {
-        RaybenchBackend::Cpu => Tracer::Cpu,
-        RaybenchBackend::Gpu => {
-            let caster = GpuRayCaster::new(&requested_gpu_options(), &corners, &bvh)
-                .context("the gpu backend is not available")?;
-            eprintln!("steadyray: raybench on {}", caster.device_description());
-            Tracer::Gpu(Box::new(caster))
-        }
-    };
+    let mut tracer = open_tracer(args.backend, &corners, &bvh)?;
 
     let (w, h) = (args.width, args.height);
     let frame = spec.camera().frame(w, h);

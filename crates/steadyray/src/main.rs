@@ -14,13 +14,17 @@ fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Bench(args) => bench::run(&args.into()),
+        Command::Bench(args) => bench::run(&args.config()),
         Command::Render(args) => commands::render::run(args),
         Command::Scenes => {
             commands::scenes::run();
             Ok(())
         }
         Command::Adapters => backend::print_adapters(),
+        Command::Controllers => {
+            print!("{}", steadyray_control::options::describe_controllers());
+            Ok(())
+        }
         Command::Compare(args) => compare::run(&args.into()),
         Command::Calibrate(args) => calibrate::run(&args.into()),
         Command::View(args) => view::run(args),

@@ -306,7 +306,8 @@ fn window_matches_render(backend: &str, flag: &[&str], temporal: bool) -> Option
     Some(summary)
 }
 
-/// On a GPU the temporal mode starts off (`--temporal auto`, the default).
+/// On a GPU the view starts in its recommended configuration, `--band refresh --temporal
+/// off` (docs/results/viewer.md).
 #[test]
 fn gpu_window_shows_the_scene_and_the_hud() {
     window_matches_render("gpu", &[], false);
@@ -323,10 +324,15 @@ fn gpu_window_shows_the_temporal_history() {
     window_matches_render("gpu", &["--temporal"], true);
 }
 
-/// On the CPU renderer the temporal mode starts on (`--temporal auto`, the default).
+/// On the CPU renderer the view starts in its recommended configuration
+/// (docs/results/viewer.md): `--band refresh:2 --temporal on --warp`, one warped refresh
+/// after every frame.
 #[test]
-fn cpu_window_shows_the_temporal_history() {
-    window_matches_render("cpu", &[], true);
+fn cpu_window_starts_in_the_recommended_configuration() {
+    let Some(summary) = window_matches_render("cpu", &[], true) else {
+        return;
+    };
+    assert_eq!(summary["warped_refreshes"], 30, "{summary}");
 }
 
 /// `--warp` at two refreshes a frame shows one warped refresh after every frame, and the run

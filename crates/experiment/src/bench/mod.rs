@@ -45,7 +45,7 @@ use anyhow::{Result, bail};
 use arms::{Bands, build_arms};
 use costs::measure_costs;
 use experiment::Sweep;
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use outputs::{run_context, write_outputs};
 use plan::Plan;
 use real_clock::{Keep, RealSweep};
@@ -396,15 +396,7 @@ fn announce(config: &BenchConfig, described: &Described, band: Band, real: Optio
 
 /// The progress bar of `len` frames (or ms of display time under the real clock).
 fn progress_bar(len: u64, real: bool) -> ProgressBar {
-    let unit = if real { "ms shown" } else { "frames" };
-    let progress = ProgressBar::new(len);
-    progress.set_style(
-        ProgressStyle::with_template(&format!(
-            "{{bar:40}} {{pos}}/{{len}} {unit}, {{msg}} [{{elapsed}}]"
-        ))
-        .expect("the progress template is valid"),
-    );
-    progress
+    crate::progress::progress_bar(len, if real { "ms shown" } else { "frames" })
 }
 
 /// The references of the frame clock's measured frames (`--quality`), rendered before the

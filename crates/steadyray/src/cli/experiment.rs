@@ -10,6 +10,7 @@ use steadyray_experiment::calibrate::CalibrateConfig;
 use steadyray_experiment::compare::CompareConfig;
 use steadyray_experiment::jod::JodCommand as JodConfig;
 use steadyray_experiment::raybench::{RaybenchBackend as RaybenchBackendConfig, RaybenchConfig};
+use steadyray_experiment::recommended::Recommended;
 use steadyray_quality::PIXELS_PER_DEGREE;
 
 /// `steadyray bench`: the experiment's command line.
@@ -41,7 +42,8 @@ pub struct BenchArgs {
     pub band: Option<RefreshBand>,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
     /// `step:knob=both`, `predictive:order=depth,spp` or `fixed:spp=4 depth=16`. The first
-    /// `fixed` also adds the best fixed quality (unless --no-best-fixed).
+    /// `fixed` also adds the best fixed quality (unless --no-best-fixed). `steadyray
+    /// controllers` lists every option.
     #[arg(
         long,
         default_value = "fixed,step,step:knob=both,hysteresis,predictive"
@@ -54,7 +56,7 @@ pub struct BenchArgs {
     #[arg(long)]
     pub height: Option<u32>,
     /// Output folder.
-    #[arg(long, default_value = "results/bench")]
+    #[arg(short = 'o', long, default_value = "results/bench")]
     pub out: PathBuf,
     /// Use the simulated renderer (a cost model on a fake clock) instead of a real one.
     #[arg(long)]
@@ -138,6 +140,29 @@ pub struct BenchArgs {
     /// over the N runs (summary.json: {median, min, max, runs}). 1: a single run into OUT.
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub repeat: u32,
+    /// The display experiment in the recommended configuration of the backend used
+    /// (docs/results/viewer.md, measured on one scene, the corridor): `--clock real` with,
+    /// on the CPU renderer, `--band refresh:2 --temporal on --warp`; on a GPU, `--band
+    /// refresh --temporal off` (`--backend auto` counts as a GPU where a hardware adapter
+    /// is present). `view` starts in the same configuration. With --simulate, which keeps no
+    /// history, `--band refresh` alone.
+    #[arg(
+        long = "display",
+        conflicts_with_all = ["clock", "band", "tmin", "tmax", "temporal", "warp"]
+    )]
+    pub display_preset: bool,
+}
+
+impl BenchArgs {
+    /// The library's configuration of these arguments, with `--display` expanded for the
+    /// backend the bench will use.
+    pub fn config(&self) -> BenchConfig {
+        let mut config = BenchConfig::from(self);
+        if self.display_preset {
+            Recommended::for_choice(config.scene.backend).apply_to_bench(&mut config);
+        }
+        config
+    }
 }
 
 impl From<&BenchArgs> for BenchConfig {
@@ -218,7 +243,7 @@ pub struct CalibrateArgs {
     #[arg(long, default_value_t = 16)]
     pub reference_depth: u32,
     /// Where to write the ladder (default ladder.json; with --motion, motion.json).
-    #[arg(short = 'o', long = "out")]
+    #[arg(short = 'o', long = "out", alias = "output")]
     pub out: Option<PathBuf>,
     /// Measure the quality model of the `perceptual` controller instead of a ladder: short
     /// stimuli over a grid of screen speeds, frame times and points of --ladder, scored by
@@ -337,8 +362,8 @@ pub struct RaybenchArgs {
     /// Image height in pixels.
     #[arg(long, default_value_t = 1080)]
     pub height: u32,
-    /// Where to trace.
-    #[arg(long, value_enum, default_value_t = RaybenchBackend::Cpu)]
+    /// Where to trace (`auto`: a hardware GPU where there is one, else the CPU).
+    #[arg(long, value_enum, default_value_t = RaybenchBackend::Auto)]
     pub backend: RaybenchBackend,
     /// Timed repetitions of each ray set; the median is reported.
     #[arg(long, default_value_t = 5)]
@@ -439,7 +464,7 @@ pub enum JodCommand {
         #[arg(required = true)]
         summaries: Vec<PathBuf>,
         /// The PNG to write (an SVG of the same name beside it).
-        #[arg(short = 'o', long = "output")]
+        #[arg(short = 'o', long = "out", alias = "output")]
         output: PathBuf,
     },
     /// How well each figure of merged summary.json files ranks their methods as JOD does:
@@ -473,6 +498,9 @@ impl From<&JodArgs> for JodConfig {
 /// Where `raybench` traces its rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum RaybenchBackend {
+    /// A hardware GPU adapter where there is one (narrowed by `STEADYRAY_ADAPTER`), else
+    /// the CPU.
+    Auto,
     /// The 8-wide BVH on the CPU, rayon tasks over chunks of rays.
     Cpu,
     /// The 4-wide BVH in WGSL on a GPU adapter (software ones such as lavapipe included;
@@ -483,6 +511,7 @@ pub enum RaybenchBackend {
 impl From<&RaybenchBackend> for RaybenchBackendConfig {
     fn from(backend: &RaybenchBackend) -> Self {
         match backend {
+            RaybenchBackend::Auto => RaybenchBackendConfig::Auto,
             RaybenchBackend::Cpu => RaybenchBackendConfig::Cpu,
             RaybenchBackend::Gpu => RaybenchBackendConfig::Gpu,
         }
@@ -502,5 +531,44 @@ mod tests {
             panic!("not the bench");
         };
         assert_eq!(BenchConfig::from(&args), BenchConfig::default());
+    }
+}
+
+#[cfg(test)]
+mod display_preset_tests {
+    use crate::cli::{Cli, Command};
+    use clap::Parser;
+    use steadyray_experiment::config::{ClockChoice, TemporalChoice};
+
+    #[test]
+    fn bench_display_on_the_cpu_is_the_cpus_recommendation() {
+        let cli =
+            Cli::try_parse_from(["steadyray", "bench", "--display", "--backend", "cpu"]).unwrap();
+        let Command::Bench(args) = cli.command else {
+            panic!("not the bench");
+        };
+        let config = args.config();
+        assert_eq!(config.clock, ClockChoice::Real);
+        assert_eq!(config.band.map(|b| b.multiple), Some(2));
+        assert_eq!(config.temporal, TemporalChoice::On);
+        assert!(config.warp);
+    }
+
+    #[test]
+    fn bench_display_refuses_the_flags_it_sets_naming_both() {
+        for flag in [
+            &["--clock", "frames"][..],
+            &["--band", "refresh"],
+            &["--tmin", "10"],
+            &["--temporal", "off"],
+            &["--warp"],
+        ] {
+            let args = ["steadyray", "bench", "--display"].iter().chain(flag);
+            let err = Cli::try_parse_from(args).unwrap_err().to_string();
+            assert!(
+                err.contains("--display") && err.contains(flag[0]),
+                "{flag:?}: {err}"
+            );
+        }
     }
 }

@@ -27,6 +27,9 @@ pub enum Command {
     Scenes,
     /// List the GPU adapters wgpu can see.
     Adapters,
+    /// List every controller with its options, their defaults and what each does (the
+    /// table the option parser uses).
+    Controllers,
     /// Compare two images (FLIP, PSNR, SSIM) and print them as one JSON line.
     Compare(experiment::CompareArgs),
     /// Measure (S, R, scale) settings' cost and FLIP over views of the camera path and write
@@ -194,7 +197,12 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 3)]
     pub warmup: u32,
     /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance).
-    #[arg(short = 'o', long = "output", default_value = "render.png")]
+    #[arg(
+        short = 'o',
+        long = "out",
+        alias = "output",
+        default_value = "render.png"
+    )]
     pub output: PathBuf,
     /// The temporal mode (docs/temporal.md): render a sequence of FRAMES frames ending at the
     /// asked view, 1/--rate s apart on the camera path (the same view for --yaw or the

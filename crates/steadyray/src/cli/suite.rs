@@ -129,7 +129,7 @@ impl SuiteCommands for CommandLine {
             std::iter::once("bench").chain(flags.iter().map(String::as_str)),
         )
         .map_err(|e| anyhow::anyhow!("bench {}: {e}", flags.join(" ")))?;
-        Ok((&line.bench).into())
+        Ok(line.bench.config())
     }
 
     fn calibrate(&self, flags: &[String]) -> Result<CalibrateConfig> {

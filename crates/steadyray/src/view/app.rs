@@ -406,6 +406,8 @@ struct Opened {
     queue: wgpu::Queue,
     device_label: String,
     timing: String,
+    /// The multiple of the refresh interval the band is aligned to (None: a fixed band).
+    aligned: Option<u32>,
 }
 
 /// The settings of the plan a live view starts with.
@@ -417,8 +419,7 @@ struct LiveOptions {
     speed: f32,
     clock: Option<crate::cli::ClockChoice>,
     pixel_size: Option<u32>,
-    temporal: super::ViewTemporal,
-    warps: u32,
+    display: super::DisplayChoice,
 }
 
 impl LiveOptions {
@@ -430,8 +431,7 @@ impl LiveOptions {
             speed: plan.speed,
             clock: plan.clock,
             pixel_size: plan.pixel_size,
-            temporal: plan.temporal,
-            warps: plan.warps,
+            display: plan.display,
         }
     }
 }
@@ -447,6 +447,9 @@ fn open_live_mode(
 ) -> Result<Opened> {
     let LiveSetup { scene, control } = setup;
     let (mut renderer, adapter, device, queue) = open_live(instance, surface, options.backend)?;
+    let display = options
+        .display
+        .resolve(matches!(renderer, LiveRenderer::Gpu(_)));
     renderer.load_scene(&scene)?;
     let device_label = renderer.describe();
     let (gpu, software, timing) = match &renderer {
@@ -488,9 +491,9 @@ fn open_live_mode(
         pixel_size: options
             .pixel_size
             .unwrap_or_else(|| default_pixel_size(size.0, gpu, software)),
-        temporal: options.temporal.starts_on(gpu),
+        temporal: display.temporal,
         history: None,
-        warps: options.warps,
+        warps: display.warps,
         warps_due: 0,
         warps_on: true,
         warpable: false,
@@ -504,6 +507,7 @@ fn open_live_mode(
         queue,
         device_label,
         timing: timing.to_string(),
+        aligned: display.aligned,
     })
 }
 
@@ -535,6 +539,7 @@ fn open_playback_mode(
         queue,
         device_label: label,
         timing: "recorded Tp".to_string(),
+        aligned: None,
     })
 }
 
@@ -667,6 +672,7 @@ impl Running {
             queue,
             device_label,
             timing,
+            aligned,
         } = match plan.content {
             Content::Live(setup) => {
                 open_live_mode(instance, &surface, *setup, options, (size, refresh_hz))?
@@ -694,8 +700,9 @@ impl Running {
             Mode::Live(live) => (live.control.name(), live.control.bounds()),
             Mode::Playback(_) => ("fixed", steadyray_control::Bounds::default()),
         };
-        let display_band = match plan.aligned {
-            Some(multiple) => Some(DisplayBand::new(multiple, refresh_hz, plan.warps > 0)?),
+        let warped = matches!(&mode, Mode::Live(live) if live.warps > 0);
+        let display_band = match aligned {
+            Some(multiple) => Some(DisplayBand::new(multiple, refresh_hz, warped)?),
             None => None,
         };
         let now = Instant::now();

@@ -29,6 +29,7 @@ use playback::Recording;
 use screen::PresentChoice;
 use std::path::PathBuf;
 use steadyray_control::{Band, Quality};
+use steadyray_experiment::recommended::Recommended;
 use steadyray_scene::Scene;
 
 #[derive(Debug, Args)]
@@ -47,11 +48,13 @@ pub struct ViewArgs {
     /// Upper edge of a fixed frame-time band, ms.
     #[arg(long, conflicts_with = "band")]
     pub tmax: Option<f64>,
-    /// The band from the display (the default without --tmin/--tmax; docs/subjective.md
-    /// says why): render times whose frames, handed over to the window, make every refresh
-    /// of its monitor (`refresh:M`: every M-th; 60 Hz where the monitor does not say), with
-    /// the hand-over measured over the first frames; the paper's [15, 20] ms holds until
-    /// then.
+    /// The band from the display: render times whose frames, handed over to the window,
+    /// make every refresh of its monitor (`refresh:M`: every M-th; 60 Hz where the monitor
+    /// does not say), with the hand-over measured over the first frames; the paper's
+    /// [15, 20] ms holds until then. Without it or --tmin/--tmax, the backend's recommended
+    /// configuration (docs/results/viewer.md, measured on one scene, the corridor): on the
+    /// CPU renderer `--band refresh:2 --temporal on --warp`, on a GPU `--band refresh
+    /// --temporal off` (`bench --display` runs the same).
     #[arg(long, value_name = "refresh[:M]")]
     pub band: Option<steadyray_display::RefreshBand>,
     /// Window width in pixels (default 1280; in playback, the recording's frame size).
@@ -88,18 +91,23 @@ pub struct ViewArgs {
     #[arg(long)]
     pub no_hud: bool,
     /// The temporal mode at start (docs/temporal.md: frames accumulated into a
-    /// full-resolution history; T toggles it). `auto` turns it on where it was measured to
-    /// look better: on the CPU renderer, not on a GPU. A bare `--temporal` is `on`.
-    #[arg(long, value_enum, default_value_t = ViewTemporal::Auto, num_args = 0..=1,
+    /// full-resolution history; T toggles it). `auto` follows the backend's recommended
+    /// configuration (docs/results/viewer.md): on with the CPU renderer, off on a GPU. A
+    /// bare `--temporal` is `on`.
+    #[arg(long, value_enum, default_value_t = ViewSwitch::Auto, num_args = 0..=1,
         default_missing_value = "on")]
-    pub temporal: ViewTemporal,
+    pub temporal: ViewSwitch,
     /// Show each refresh between two frames of `--band refresh:M` (M ≥ 2) as the last frame
     /// warped to the camera at that refresh (docs/temporal.md, "Warped refreshes"), as
     /// `bench --warp` does: M − 1 warps after each frame, their cost measured over the first
-    /// ones and left free in the band. Needs the temporal mode (`--temporal auto` turns it
-    /// on); while T has it off, refreshes repeat the frame.
-    #[arg(long)]
-    pub warp: bool,
+    /// ones and left free in the band. Needs the temporal mode (`on` turns it on); while T
+    /// has it off, refreshes repeat the frame. `auto` follows the backend's recommended
+    /// configuration (docs/results/viewer.md): on with the CPU renderer when the history is
+    /// on and frames span two or more refreshes, off on a GPU. A bare `--warp` is `on`, and
+    /// without --band it shows frames every two refreshes (`--band refresh:2`).
+    #[arg(long, value_enum, default_value_t = ViewSwitch::Auto, num_args = 0..=1,
+        default_missing_value = "on")]
+    pub warp: ViewSwitch,
     /// Show this many frames, then exit (tests and CI drive the view this way).
     #[arg(long)]
     pub frames: Option<u32>,
@@ -132,43 +140,90 @@ struct Plan {
     pixel_size: Option<u32>,
     present: PresentChoice,
     band: Band,
-    /// `--band refresh[:M]`: the multiple of the refresh interval to align the band to.
-    aligned: Option<u32>,
+    /// The display band, temporal mode and warps asked for, resolved per backend.
+    display: DisplayChoice,
     clock: Option<crate::cli::ClockChoice>,
     sweep: bool,
     sweep_seconds: f32,
     speed: f32,
     hud: bool,
-    temporal: ViewTemporal,
-    /// Warped refreshes after each frame (`--warp`: M − 1 with `--band refresh:M`).
-    warps: u32,
     frames: Option<u32>,
     screenshot: Option<PathBuf>,
 }
 
-/// Whether the live view starts with the temporal mode on.
+/// A setting of the live view that follows the backend's recommended configuration
+/// unless asked (`--temporal`, `--warp`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum ViewTemporal {
-    /// On with the CPU renderer, off on a GPU ([`ViewTemporal::starts_on`] says why).
+pub enum ViewSwitch {
+    /// As recommended for the backend the view renders on (docs/results/viewer.md).
     Auto,
     On,
     Off,
 }
 
-impl ViewTemporal {
-    /// Whether the view starts with the temporal mode on, rendering on a GPU or not.
-    ///
-    /// `auto` follows the benches of `docs/subjective.md` at the view's default sizes. On
-    /// the CPU (a frame about 640 pixels wide) the history scored higher JOD than the same
-    /// controller without it at both the display's band (one refresh: +0.13 to +0.21 in
-    /// three pairs) and the paper's (+0.71 to +1.06). On a GPU it changed nothing a viewer
-    /// would see (JOD level at one refresh on an H200, where frames carry 25 or more
-    /// samples), so it is left off there.
-    pub fn starts_on(self, gpu: bool) -> bool {
-        match self {
-            ViewTemporal::Auto => !gpu,
-            ViewTemporal::On => true,
-            ViewTemporal::Off => false,
+/// The band a live view aligns to the display, if any.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum BandChoice {
+    /// None given: the backend's recommended multiple of the refresh interval.
+    Recommended,
+    /// `--band refresh[:M]`.
+    Refresh(u32),
+    /// A band of fixed --tmin/--tmax (or a playback, which runs no controller).
+    Fixed,
+}
+
+/// The display settings asked for on the command line, resolved once the renderer's
+/// backend is known ([`DisplayChoice::resolve`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct DisplayChoice {
+    band: BandChoice,
+    temporal: ViewSwitch,
+    warp: ViewSwitch,
+}
+
+/// The display settings a live view starts with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct DisplaySetup {
+    /// The multiple of the refresh interval the band is aligned to (None: a fixed band).
+    aligned: Option<u32>,
+    /// Whether the temporal mode starts on.
+    temporal: bool,
+    /// Warped refreshes after each frame (M − 1 at `refresh:M` with warps on).
+    warps: u32,
+}
+
+impl DisplayChoice {
+    /// The settings on a GPU (`gpu`) or the CPU renderer: what was asked, the rest as
+    /// [`Recommended`] says for that backend. A `--warp` without --band shows frames every
+    /// two refreshes, the least that leaves a refresh to warp.
+    fn resolve(self, gpu: bool) -> DisplaySetup {
+        let recommended = Recommended::for_backend(gpu);
+        let aligned = match self.band {
+            BandChoice::Recommended if self.warp == ViewSwitch::On => {
+                Some(recommended.refreshes_per_frame.max(2))
+            }
+            BandChoice::Recommended => Some(recommended.refreshes_per_frame),
+            BandChoice::Refresh(multiple) => Some(multiple),
+            BandChoice::Fixed => None,
+        };
+        let temporal = match self.temporal {
+            ViewSwitch::Auto => recommended.temporal || self.warp == ViewSwitch::On,
+            ViewSwitch::On => true,
+            ViewSwitch::Off => false,
+        };
+        let warp = match self.warp {
+            ViewSwitch::Auto => recommended.warp && temporal,
+            ViewSwitch::On => true,
+            ViewSwitch::Off => false,
+        };
+        DisplaySetup {
+            aligned,
+            temporal,
+            warps: if warp {
+                aligned.unwrap_or(1).saturating_sub(1)
+            } else {
+                0
+            },
         }
     }
 }
@@ -190,29 +245,7 @@ impl Plan {
         if args.band.is_some() && args.playback.is_some() {
             bail!("--band refresh sets a controller's band: it needs a live view, not --playback");
         }
-        let aligned = match (args.band, fixed_band, &args.playback) {
-            (Some(b), _, _) => Some(b.multiple),
-            (None, false, None) => Some(1),
-            _ => None,
-        };
-        let warps = if args.warp {
-            match aligned {
-                _ if args.playback.is_some() => {
-                    bail!("--warp shows a live history again: it needs a live view, not --playback")
-                }
-                Some(multiple) if multiple >= 2 => multiple - 1,
-                _ => bail!(
-                    "--warp fills the refreshes between frames of --band refresh:M with M >= 2 \
-                     (e.g. --band refresh:2); at one refresh a frame, or a band of fixed \
-                     --tmin/--tmax, no refresh is known to lack a new frame"
-                ),
-            }
-        } else {
-            0
-        };
-        if args.warp && args.temporal == ViewTemporal::Off {
-            bail!("--warp shows the temporal history again: it needs --temporal on or auto");
-        }
+        let display = display_choice(args, fixed_band)?;
         if args.frames == Some(0) {
             bail!("--frames must be at least 1");
         }
@@ -278,23 +311,46 @@ impl Plan {
             pixel_size: args.pixel_size,
             present: args.present,
             band,
-            aligned,
             clock: args.clock,
             sweep: args.sweep,
             sweep_seconds: args.sweep_seconds,
             speed: args.speed,
             hud: !args.no_hud,
-            // A warp needs the history.
-            temporal: if args.warp {
-                ViewTemporal::On
-            } else {
-                args.temporal
-            },
-            warps,
+            display,
             frames: args.frames,
             screenshot: args.screenshot.clone(),
         })
     }
+}
+
+/// The display settings `args` ask for, checked: `--warp` needs a live view, the history
+/// and frames two or more refreshes apart.
+fn display_choice(args: &ViewArgs, fixed_band: bool) -> Result<DisplayChoice> {
+    let band = match (args.band, fixed_band, &args.playback) {
+        (Some(b), _, _) => BandChoice::Refresh(b.multiple),
+        (None, false, None) => BandChoice::Recommended,
+        _ => BandChoice::Fixed,
+    };
+    if args.warp == ViewSwitch::On {
+        if args.playback.is_some() {
+            bail!("--warp shows a live history again: it needs a live view, not --playback");
+        }
+        if matches!(band, BandChoice::Fixed | BandChoice::Refresh(1)) {
+            bail!(
+                "--warp fills the refreshes between frames of --band refresh:M with M >= 2 \
+                 (e.g. --band refresh:2); at one refresh a frame, or a band of fixed \
+                 --tmin/--tmax, no refresh is known to lack a new frame"
+            );
+        }
+        if args.temporal == ViewSwitch::Off {
+            bail!("--warp shows the temporal history again: it needs --temporal on or auto");
+        }
+    }
+    Ok(DisplayChoice {
+        band,
+        temporal: args.temporal,
+        warp: args.warp,
+    })
 }
 
 /// Opens the window and runs until it is closed, `--frames` are shown, or something fails.
@@ -369,7 +425,7 @@ mod tests {
             (&["--scene", "nowhere"], "nowhere"),
             (&["--playback", "/nonexistent/recording"], "not a folder"),
             (&["--width", "0"], "window size"),
-            (&["--warp"], "refresh:M"),
+            (&["--warp", "--band", "refresh"], "refresh:M"),
             (&["--warp", "--tmax", "40"], "refresh:M"),
             (
                 &["--warp", "--band", "refresh:2", "--temporal", "off"],
@@ -393,33 +449,64 @@ mod tests {
         assert!(err.contains("connection reset"), "{err}");
     }
 
+    fn setup(args: &[&str], gpu: bool) -> DisplaySetup {
+        plan(args).unwrap().display.resolve(gpu)
+    }
+
+    #[test]
+    fn the_defaults_are_each_backends_recommended_configuration() {
+        let cpu = setup(&[], false);
+        assert_eq!(
+            cpu,
+            DisplaySetup {
+                aligned: Some(2),
+                temporal: true,
+                warps: 1
+            },
+            "--band refresh:2 --temporal on --warp"
+        );
+        let gpu = setup(&[], true);
+        assert_eq!(
+            gpu,
+            DisplaySetup {
+                aligned: Some(1),
+                temporal: false,
+                warps: 0
+            },
+            "--band refresh --temporal off"
+        );
+    }
+
     #[test]
     fn the_band_follows_the_display_unless_given() {
-        assert_eq!(plan(&[]).unwrap().aligned, Some(1));
-        assert_eq!(plan(&["--band", "refresh:2"]).unwrap().aligned, Some(2));
+        assert_eq!(setup(&["--band", "refresh"], false).aligned, Some(1));
+        assert_eq!(setup(&["--band", "refresh:2"], true).aligned, Some(2));
         let fixed = plan(&["--tmax", "30"]).unwrap();
-        assert_eq!(fixed.aligned, None);
+        assert_eq!(fixed.display.resolve(false).aligned, None);
         assert_eq!((fixed.band.tmin_ms(), fixed.band.tmax_ms()), (15.0, 30.0));
     }
 
     #[test]
-    fn the_temporal_mode_starts_on_with_the_cpu_renderer_unless_asked() {
-        let starts = |args: &[&str], gpu| plan(args).unwrap().temporal.starts_on(gpu);
+    fn the_temporal_mode_follows_the_backend_unless_asked() {
+        let starts = |args: &[&str], gpu| setup(args, gpu).temporal;
         assert!(starts(&[], false) && !starts(&[], true));
         assert!(starts(&["--temporal"], true) && starts(&["--temporal", "on"], true));
         assert!(!starts(&["--temporal", "off"], false));
-        assert!(starts(&["--temporal", "auto"], false));
+        assert_eq!(setup(&["--temporal", "off"], false).warps, 0);
         let err = format!("{:#}", plan(&["--temporal", "sometimes"]).err().unwrap());
         assert!(err.contains("sometimes"), "{err}");
     }
 
     #[test]
     fn warps_fill_the_refreshes_between_frames_with_the_history_on() {
-        assert_eq!(plan(&[]).unwrap().warps, 0);
-        let two = plan(&["--band", "refresh:2", "--warp"]).unwrap();
+        assert_eq!(setup(&["--band", "refresh"], false).warps, 0);
+        assert_eq!(setup(&["--warp", "off"], false).warps, 0);
+        let two = setup(&["--band", "refresh:2", "--warp"], true);
         assert_eq!(two.warps, 1);
-        assert!(two.temporal.starts_on(true), "--warp turns the history on");
-        assert_eq!(plan(&["--band", "refresh:3", "--warp"]).unwrap().warps, 2);
+        assert!(two.temporal, "--warp turns the history on");
+        assert_eq!(setup(&["--warp"], true).aligned, Some(2));
+        assert_eq!(setup(&["--band", "refresh:3", "--warp"], true).warps, 2);
+        assert_eq!(setup(&["--band", "refresh:3"], false).warps, 2);
     }
 
     #[test]
