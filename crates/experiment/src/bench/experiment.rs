@@ -182,6 +182,10 @@ pub fn search_best_fixed(
                 let (mut in_band, mut over) = (0, 0);
                 for &k in &frames {
                     let m = source.frame(sweep.at(k), q)?;
+                    // The search's length is known only as it goes (it stops early on
+                    // candidates that cannot win): each frame adds to the total as it is
+                    // done, so the bar never passes 100 %.
+                    progress.inc_length(1);
                     progress.inc(1);
                     if sweep.band.contains(m.report.tp_ms) {
                         in_band += 1;
