@@ -63,49 +63,6 @@ impl SceneConfig {
     }
 }
 
-/// The bounds of the quality knobs a controller may move (S, R, resolution scale), as given:
-/// [`BoundsConfig::bounds`] checks them.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BoundsConfig {
-    /// Smallest eye rays per pixel S.
-    pub spp_min: f32,
-    /// Largest eye rays per pixel S.
-    pub spp_max: f32,
-    /// Smallest reflection depth R.
-    pub depth_min: u32,
-    /// Largest reflection depth R.
-    pub depth_max: u32,
-    /// Smallest resolution scale.
-    pub scale_min: f32,
-    /// Largest resolution scale.
-    pub scale_max: f32,
-}
-
-impl Default for BoundsConfig {
-    /// S in [1, 256], R in [0, 16], the scale in [0.25, 1].
-    fn default() -> Self {
-        Self {
-            spp_min: 1.0,
-            spp_max: 256.0,
-            depth_min: 0,
-            depth_max: 16,
-            scale_min: 0.25,
-            scale_max: 1.0,
-        }
-    }
-}
-
-impl BoundsConfig {
-    /// The checked bounds.
-    pub fn bounds(&self) -> Result<steadyray_control::Bounds, steadyray_control::ConfigError> {
-        steadyray_control::Bounds::new(
-            (self.spp_min, self.spp_max),
-            (self.depth_min, self.depth_max),
-            (self.scale_min, self.scale_max),
-        )
-    }
-}
-
 /// How time runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ClockChoice {

@@ -39,7 +39,7 @@ pub mod source;
 pub mod video;
 
 use crate::backend::create_renderer;
-use crate::config::{BoundsConfig, ClockChoice, DisplaySettings, SceneConfig, TemporalChoice};
+use crate::config::{ClockChoice, DisplaySettings, SceneConfig, TemporalChoice};
 use crate::frame_loop::FrameLoop;
 use anyhow::{Result, bail};
 use arms::{Bands, build_arms};
@@ -93,8 +93,9 @@ pub struct BenchConfig {
     pub out: PathBuf,
     /// Use the simulated renderer (a cost model on a fake clock) instead of a real one.
     pub simulate: bool,
-    /// The bounds of the quality knobs.
-    pub bounds: BoundsConfig,
+    /// The bounds of the quality knobs, as given (the plan checks them before anything
+    /// renders).
+    pub bounds: steadyray_control::Bounds,
     /// R of the paper's fixed baseline and of every controller's start (default: the
     /// largest R). S starts at its minimum and the scale at its maximum.
     pub fixed_depth: Option<u32>,
@@ -170,7 +171,7 @@ impl Default for BenchConfig {
             height: None,
             out: PathBuf::from("results/bench"),
             simulate: false,
-            bounds: BoundsConfig::default(),
+            bounds: steadyray_control::Bounds::default(),
             fixed_depth: None,
             no_best_fixed: false,
             search_views: 48,

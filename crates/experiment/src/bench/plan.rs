@@ -28,7 +28,8 @@ impl Plan {
     /// with the display is only known once the hand-over is measured, so the controllers are
     /// tried in the configuration's band).
     pub fn check(config: &BenchConfig) -> Result<Self> {
-        let bounds = config.bounds.bounds()?;
+        let bounds = config.bounds;
+        bounds.validate()?;
         let start = Quality {
             spp: bounds.spp_min,
             depth: config.fixed_depth.unwrap_or(bounds.depth_max),

@@ -87,11 +87,17 @@ pub struct BoundsArgs {
 impl BoundsArgs {
     /// The checked bounds.
     pub fn bounds(&self) -> Result<steadyray_control::Bounds, steadyray_control::ConfigError> {
-        lib::BoundsConfig::from(self).bounds()
+        steadyray_control::Bounds::new(
+            (self.spp_min, self.spp_max),
+            (self.depth_min, self.depth_max),
+            (self.scale_min, self.scale_max),
+        )
     }
 }
 
-impl From<&BoundsArgs> for lib::BoundsConfig {
+/// The bounds as given, checked later by the bench (its plan refuses bad bounds before
+/// anything renders).
+impl From<&BoundsArgs> for steadyray_control::Bounds {
     fn from(args: &BoundsArgs) -> Self {
         Self {
             spp_min: args.spp_min,
