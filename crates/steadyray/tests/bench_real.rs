@@ -5,6 +5,7 @@
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::time::SystemTime;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
 
 mod support;
@@ -304,6 +305,85 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
         again["controllers"][0]["displayed_flip_mean"],
         fixed["displayed_flip_mean"]
     );
+}
+
+/// `--references DIR`: the first tiny CPU bench renders its references into the store, a
+/// second one finds every reference there and renders none (the store gains no file), and
+/// scores the same; without --quality or --video, or under the frame clock, it is refused.
+#[test]
+fn a_reference_store_is_filled_once_and_shared() {
+    let (out, store) = (scratch("store-out"), scratch("store"));
+    let run = || {
+        let output = tiny_cpu_bench()
+            .args(["--controllers", "fixed", "--no-best-fixed"])
+            .args(["--reference-spp", "4", "--quality", "--every", "2"])
+            .arg("--references")
+            .arg(&store)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let summary: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        summary["controllers"][0]["displayed_flip_mean"].clone()
+    };
+    let stored = |store: &Path| -> Vec<PathBuf> {
+        let folders: Vec<PathBuf> = std::fs::read_dir(store)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        assert_eq!(folders.len(), 1, "one set-up: {folders:?}");
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&folders[0])
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        files.sort();
+        files
+    };
+    let first = run();
+    let files = stored(&store);
+    assert!(files.iter().any(|f| f.ends_with("key.json")), "{files:?}");
+    assert!(
+        files.len() >= 3,
+        "the key and the sampled references: {files:?}"
+    );
+    let times: Vec<SystemTime> = files
+        .iter()
+        .map(|f| std::fs::metadata(f).unwrap().modified().unwrap())
+        .collect();
+    let second = run();
+    assert_eq!(stored(&store), files, "nothing new rendered");
+    let again: Vec<SystemTime> = files
+        .iter()
+        .map(|f| std::fs::metadata(f).unwrap().modified().unwrap())
+        .collect();
+    assert_eq!(again, times, "nothing rewritten");
+    assert!(first.as_f64().is_some(), "{first}");
+    assert_eq!(second, first);
+    for (flags, says) in [
+        (vec!["--clock", "real"], "--quality or --video"),
+        (vec!["--clock", "frames"], "need --clock real"),
+    ] {
+        let output = Command::new(BIN)
+            .args(["bench", "--backend", "cpu", "--references"])
+            .arg(&store)
+            .args(flags)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            !output.status.success() && stderr.contains(says),
+            "{stderr}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&out);
+    let _ = std::fs::remove_dir_all(&store);
 }
 
 /// With warped refreshes, a band of two refreshes a frame leaves room for the warp that

@@ -3,6 +3,7 @@
 //! stated viewing set-up. References are rendered after the runs (the runs do not wait for
 //! them), once per time, and shared by every controller.
 
+use super::reference_store::ReferenceStore;
 use super::screen::{DisplayRun, DisplayedQuality, ScoredSample, ScreenSample};
 use super::source::{FrameSource, PathPoint, render_reference};
 use anyhow::{Context, Result, bail};
@@ -22,6 +23,8 @@ pub fn time_key(t_s: f64) -> i64 {
 pub struct TimedReferences {
     quality: Quality,
     images: BTreeMap<i64, Rgb8Image>,
+    /// Where references are kept between benches (`--references`), if anywhere.
+    store: Option<ReferenceStore>,
     /// FLIP of the world at one time against the world at another (keys: then, now),
     /// shared by every run that showed a frame of that time at that refresh.
     age_flips: BTreeMap<(i64, i64), f64>,
@@ -33,8 +36,15 @@ impl TimedReferences {
         Self {
             quality,
             images: BTreeMap::new(),
+            store: None,
             age_flips: BTreeMap::new(),
         }
+    }
+
+    /// References that come from `store` where it holds them, and go into it when rendered.
+    pub fn with_store(mut self, store: ReferenceStore) -> Self {
+        self.store = Some(store);
+        self
     }
 
     /// The reference quality.
@@ -100,14 +110,44 @@ impl TimedReferences {
         })
     }
 
-    /// Renders the references of those `times` not held yet; `progress` is told of each.
+    /// The reference of the world at `t_s` at the source's full-scale size: the one held,
+    /// else the store's, else rendered (and kept in the store). It is not held afterwards:
+    /// [`Self::insert`] it to keep it.
+    pub fn fetch(&self, source: &mut dyn FrameSource, t_s: f64) -> Result<Rgb8Image> {
+        if let Some(held) = self.get(t_s) {
+            return Ok(held.clone());
+        }
+        if let Some(stored) = self
+            .store
+            .as_ref()
+            .map(|s| s.load(t_s))
+            .transpose()?
+            .flatten()
+        {
+            return Ok(stored);
+        }
+        let (width, height) = source.resolution();
+        let at = PathPoint::Time { index: 0, t_s };
+        let picture = render_reference(source, at, self.quality)
+            .with_context(|| format!("reference at {t_s:.4} s ({}) failed", self.quality))?;
+        let Some(picture) = picture else {
+            bail!("references need a renderer that produces images (not --simulate)");
+        };
+        let picture = picture.resize_bilinear(width, height);
+        if let Some(store) = &self.store {
+            store.save(t_s, &picture)?;
+        }
+        Ok(picture)
+    }
+
+    /// Fetches ([`Self::fetch`]) and holds the references of those `times` not held yet;
+    /// `progress` is told of each.
     pub fn render_missing(
         &mut self,
         source: &mut dyn FrameSource,
         times: impl IntoIterator<Item = f64>,
         mut progress: impl FnMut(),
     ) -> Result<()> {
-        let (width, height) = source.resolution();
         let mut missing: Vec<f64> = times
             .into_iter()
             .filter(|&t| self.get(t).is_none())
@@ -115,13 +155,8 @@ impl TimedReferences {
         missing.sort_by(f64::total_cmp);
         missing.dedup_by_key(|t| time_key(*t));
         for t_s in missing {
-            let at = PathPoint::Time { index: 0, t_s };
-            let picture = render_reference(source, at, self.quality)
-                .with_context(|| format!("reference at {t_s:.4} s ({}) failed", self.quality))?;
-            let Some(picture) = picture else {
-                bail!("references need a renderer that produces images (not --simulate)");
-            };
-            self.insert(t_s, picture.resize_bilinear(width, height));
+            let picture = self.fetch(source, t_s)?;
+            self.insert(t_s, picture);
             progress();
         }
         Ok(())

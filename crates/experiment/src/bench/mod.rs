@@ -29,6 +29,7 @@ pub mod plot;
 pub mod quality;
 pub mod real_clock;
 pub mod record;
+pub mod reference_store;
 pub mod repeat;
 pub mod repeat_summary;
 pub mod report;
@@ -146,6 +147,10 @@ pub struct BenchConfig {
     /// tool (scripts/jod/). References already in DIR/reference for the same set-up are
     /// reused.
     pub video: Option<PathBuf>,
+    /// With --clock real and --quality or --video: keep the references in DIR and reuse
+    /// those already there ([`reference_store`]): benches of the same scene, renderer, size,
+    /// reference quality and source revision render each reference once.
+    pub references: Option<PathBuf>,
     /// Runs the whole experiment this many times, each repetition a fresh run (its own
     /// renderer, costs measured before the runs and best fixed search) into
     /// `OUT/repeat-K/`, and reports per controller the median and range of every figure
@@ -186,6 +191,7 @@ impl Default for BenchConfig {
             temporal: TemporalChoice::Off,
             warp: false,
             video: None,
+            references: None,
             repeat: 1,
         }
     }

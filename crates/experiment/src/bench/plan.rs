@@ -79,10 +79,12 @@ fn real_display(config: &BenchConfig) -> Result<Option<DisplayConfig>> {
             if config.duration.is_some()
                 || config.display.is_given()
                 || config.video.is_some()
+                || config.references.is_some()
                 || config.warp
             {
                 bail!(
-                    "--duration, --refresh, --vsync, --vrr, --video and --warp need --clock real"
+                    "--duration, --refresh, --vsync, --vrr, --video, --references and --warp \
+                     need --clock real"
                 );
             }
             Ok(None)
@@ -95,6 +97,9 @@ fn real_display(config: &BenchConfig) -> Result<Option<DisplayConfig>> {
                 bail!(
                     "--quality and --video need a renderer that produces images (not --simulate)"
                 );
+            }
+            if config.references.is_some() && !config.quality && config.video.is_none() {
+                bail!("--references keeps the references of --quality or --video: give either");
             }
             let display = config.display.config()?;
             if config.warp {

@@ -7,6 +7,7 @@ use super::displayed::{self, TimedReferences, run_samples, time_key};
 use super::machine;
 use super::real_clock::{Keep, RealSweep};
 use super::record::ControllerRun;
+use super::reference_store::{ReferenceStore, StoreKey};
 use super::source::FrameSource;
 use super::video::{self, VideoRun};
 use anyhow::Result;
@@ -53,6 +54,11 @@ pub fn measure_screens(
         }
     }
     let mut references = TimedReferences::new(reference_quality);
+    if let Some(dir) = &config.references {
+        let store = ReferenceStore::open(dir, &store_key(described, reference_quality, source))?;
+        eprintln!("bench: references kept in {}", store.folder().display());
+        references = references.with_store(store);
+    }
     if let Some(dir) = &config.video {
         let needed_keys: BTreeSet<i64> = needed.iter().map(|&t| time_key(t)).collect();
         let grid: Vec<f64> = (0..refreshes).map(|i| i as f64 * period / 1000.0).collect();
@@ -118,4 +124,19 @@ pub fn measure_screens(
         }
     }
     Ok(())
+}
+
+/// What the references of this bench are of, for `--references`.
+fn store_key(described: &Described, quality: Quality, source: &dyn FrameSource) -> StoreKey {
+    let (width, height) = described.resolution;
+    StoreKey {
+        scene: described.scene.clone(),
+        scene_digest: source.world_digest().unwrap_or_default(),
+        backend: described.backend.clone(),
+        device: described.device.clone(),
+        resolution: [width, height],
+        spp: quality.spp,
+        depth: quality.depth,
+        git_revision: machine::git_revision(),
+    }
 }

@@ -1,6 +1,7 @@
 //! Where the experiment's frames come from: a real renderer over the scene's camera path, or
 //! the control crate's simulated renderer on a fake clock (`bench --simulate`).
 
+use super::reference_store::digest;
 use crate::frame_loop::{FrameLoop, LoopFrame};
 use anyhow::{Result, bail};
 use std::f64::consts::TAU;
@@ -59,6 +60,11 @@ pub enum PathPoint {
 pub trait FrameSource {
     /// The backend and device, for reports.
     fn describe(&self) -> (String, String);
+    /// A digest of the world drawn (the whole scene), naming it for references kept between
+    /// benches (`--references`); `None` for a source without images.
+    fn world_digest(&self) -> Option<String> {
+        None
+    }
     /// Full-scale image size.
     fn resolution(&self) -> (u32, u32);
     /// The camera path's length in seconds (its default frames at 60 per second).
@@ -133,6 +139,10 @@ impl FrameSource for RendererSource {
 
     fn resolution(&self) -> (u32, u32) {
         self.frame_loop.full_size()
+    }
+
+    fn world_digest(&self) -> Option<String> {
+        Some(digest(&format!("{:?}", self.scene)))
     }
 
     fn path_duration_s(&self) -> f64 {

@@ -20,7 +20,7 @@
 use super::displayed::{TimedReferences, screen_picture, screen_samples};
 use super::record::safe_name;
 use super::screen::{DisplayRun, ScreenSample};
-use super::source::{FrameSource, PathPoint, render_reference};
+use super::source::FrameSource;
 use anyhow::{Context, Result, bail};
 use image::ImageEncoder;
 use rayon::prelude::*;
@@ -106,7 +106,7 @@ impl Encoded {
 }
 
 /// A lossless PNG of `image`, in memory.
-fn encode_png(image: &Rgb8Image) -> Result<Vec<u8>> {
+pub(super) fn encode_png(image: &Rgb8Image) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
     image::codecs::png::PngEncoder::new(&mut bytes).write_image(
         image.as_bytes(),
@@ -337,11 +337,10 @@ pub fn write_references(
         let first = batch_index * ENCODE_BATCH;
         let mut pictures = Vec::with_capacity(batch.len());
         for (i, &t_s) in (first..).zip(batch) {
-            let at = PathPoint::Time { index: 0, t_s };
-            let picture = render_reference(source, at, references.quality())
-                .with_context(|| format!("reference of refresh {i} failed"))?
-                .context("--video needs a renderer that produces images (not --simulate)")?;
-            pictures.push(picture.resize_bilinear(size.0, size.1));
+            let picture = references
+                .fetch(source, t_s)
+                .with_context(|| format!("reference of refresh {i} failed"))?;
+            pictures.push(picture);
         }
         let encoded = pictures
             .par_iter()

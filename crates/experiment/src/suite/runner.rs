@@ -105,7 +105,8 @@ impl BenchCells<'_> {
     }
 
     /// The suite's own bench flags: the real clock, the displayed quality at every second
-    /// refresh, the cell's folder and, with the JOD tool, the videos.
+    /// refresh, the references shared by every cell (`<suite>/references`: each rendered
+    /// once), the cell's folder and, with the JOD tool, the videos.
     fn cell_flags(&self, dir: &Path) -> Vec<String> {
         let mut flags: Vec<String> = [
             "--clock",
@@ -115,6 +116,8 @@ impl BenchCells<'_> {
             "--quality",
             "--every",
             "2",
+            "--references",
+            &self.config.out.join("references").display().to_string(),
             "--out",
             &dir.display().to_string(),
         ]

@@ -132,6 +132,11 @@ pub struct BenchArgs {
     /// reused.
     #[arg(long, value_name = "DIR")]
     pub video: Option<PathBuf>,
+    /// With --clock real and --quality or --video: keep the references in DIR and reuse the
+    /// ones already there, so benches of the same scene, renderer, size, reference quality
+    /// and source revision render each reference once (the scene suite's cells share them).
+    #[arg(long, value_name = "DIR")]
+    pub references: Option<PathBuf>,
     /// Run the whole experiment N times, each repetition a fresh run into OUT/repeat-K/ (as
     /// a single run writes OUT): its own renderer, and the costs measured before the runs
     /// (hand-over, warped refresh, best fixed search) measured again; the simulated
@@ -194,6 +199,7 @@ impl From<&BenchArgs> for BenchConfig {
             temporal: (&args.temporal).into(),
             warp: args.warp,
             video: args.video.clone(),
+            references: args.references.clone(),
             repeat: args.repeat,
         }
     }
