@@ -106,7 +106,7 @@ pub use error::{ConfigError, Error};
 pub use fixed::Fixed;
 pub use hysteresis::{Hysteresis, HysteresisParams};
 pub use ladder::{Ladder, LadderPoint, pareto_front};
-pub use metrics::{FrameRecord, RunSummary, best_fixed, summarize};
+pub use metrics::{FrameRecord, RunSummary, most_in_band_fixed, summarize};
 pub use motion_model::{Metric, MotionModel};
 pub use noise::{NoiseProcess, NoiseProfile, fit_profile};
 pub use perceptual::{Perceptual, PerceptualParams, Prospect};

@@ -236,9 +236,10 @@ pub fn summarize(
     }
 }
 
-/// The best fixed quality: the index of the candidate with the most frames in band (ties go
-/// to the higher quality by [`Quality::cmp_level`]); `None` if there are no candidates.
-pub fn best_fixed(candidates: &[(Quality, RunSummary)]) -> Option<usize> {
+/// The most-in-band fixed quality: the index of the candidate with the most frames in band
+/// (ties go to the higher quality by [`Quality::cmp_level`]); `None` if there are no
+/// candidates. It is chosen by frame time alone, not by how it looks.
+pub fn most_in_band_fixed(candidates: &[(Quality, RunSummary)]) -> Option<usize> {
     (0..candidates.len()).max_by(|&a, &b| {
         let (qa, sa) = &candidates[a];
         let (qb, sb) = &candidates[b];
@@ -320,7 +321,7 @@ mod tests {
     }
 
     #[test]
-    fn best_fixed_prefers_in_band_then_quality() {
+    fn most_in_band_fixed_prefers_in_band_then_quality() {
         let band = Band::PAPER;
         let top = Quality::new(1.0, 16, 1.0);
         let run = |tp: f64| summarize(&[rec(0, tp, 1)], band, top, Some(&[]));
@@ -330,7 +331,7 @@ mod tests {
             (Quality::new(1.0, 3, 1.0), run(17.0)),
             (Quality::new(1.0, 4, 1.0), run(12.0)),
         ];
-        assert_eq!(best_fixed(&c), Some(2));
-        assert_eq!(best_fixed(&[]), None);
+        assert_eq!(most_in_band_fixed(&c), Some(2));
+        assert_eq!(most_in_band_fixed(&[]), None);
     }
 }

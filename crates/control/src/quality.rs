@@ -317,7 +317,8 @@ impl Bounds {
 
     /// The fixed qualities along one knob, lowest first, the other knobs as in `base`:
     /// every whole R, every whole S, or scales from the maximum down in steps of 0.05. The
-    /// candidates for the "best fixed quality" baseline (see [`crate::metrics::best_fixed`]).
+    /// candidates for the "most-in-band fixed quality" baseline (see
+    /// [`crate::metrics::most_in_band_fixed`]).
     pub fn ladder(&self, knob: Knob, base: Quality) -> Result<Vec<Quality>, ConfigError> {
         self.validate()?;
         let base = self.clamp(base);

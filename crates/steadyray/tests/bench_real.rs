@@ -75,7 +75,7 @@ fn frames_and_refreshes_are_what_the_display_model_says() {
             "2",
             "--controllers",
             "fixed,predictive",
-            "--no-best-fixed",
+            "--no-in-band-fixed",
         ],
         &out,
     );
@@ -160,7 +160,7 @@ fn bad_display_settings_are_clear_errors_and_write_nothing() {
             "0.5",
             "--controllers",
             "fixed",
-            "--no-best-fixed",
+            "--no-in-band-fixed",
         ],
         &out,
     );
@@ -226,7 +226,8 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
             .args([
                 "--controllers",
                 "fixed",
-                "--no-best-fixed",
+                "--no-in-band-fixed",
+                "--no-best-looking-fixed",
                 "--reference-spp",
                 "4",
             ])
@@ -395,7 +396,7 @@ fn a_warped_band_leaves_room_for_the_warps_between_frames() {
     let out = scratch("warped-band");
     let run_with = |band: &str, temporal: &str| -> Value {
         let output = tiny_cpu_bench()
-            .args(["--controllers", "fixed", "--no-best-fixed"])
+            .args(["--controllers", "fixed", "--no-in-band-fixed"])
             .args(["--temporal", temporal, "--warp", "--band", band, "--out"])
             .arg(&out)
             .output()
@@ -460,7 +461,7 @@ fn a_perceptual_controller_is_told_the_warps_cost() {
     let output = tiny_cpu_bench()
         .arg("--controllers")
         .arg(format!("perceptual:model={}", model_path.display()))
-        .args(["--no-best-fixed", "--temporal", "on", "--warp", "--out"])
+        .args(["--no-in-band-fixed", "--temporal", "on", "--warp", "--out"])
         .arg(&out)
         .output()
         .unwrap();
@@ -481,4 +482,84 @@ fn a_perceptual_controller_is_told_the_warps_cost() {
         "{name}"
     );
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `--only-best-looking-fixed` on the CPU renderer at 32 × 18: every candidate runs for the
+/// display span and is scored, and the bench reports the one with the lowest displayed FLIP
+/// as its only run (in summary.json and frames.csv); with --video only the winner's video
+/// is left.
+#[test]
+fn the_best_looking_fixed_quality_is_the_candidate_with_the_lowest_displayed_flip() {
+    let (out, video) = (scratch("best-looking-out"), scratch("best-looking-video"));
+    let output = tiny_cpu_bench()
+        .current_dir(std::env::temp_dir())
+        .args(["--only-best-looking-fixed", "--quality", "--every", "2"])
+        .args(["--reference-spp", "4", "--video"])
+        .arg(&video)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    // "bench: best-looking fixed S=.. R=..: displayed FLIP 0.1234", one line per candidate.
+    let tried: Vec<(&str, f64)> = stderr
+        .lines()
+        .filter_map(|l| l.strip_prefix("bench: "))
+        .filter_map(|l| l.split_once(": displayed FLIP "))
+        .map(|(name, flip)| (name, flip.parse().unwrap()))
+        .collect();
+    assert_eq!(tried.len(), 9, "{stderr}");
+    let lowest = tried.iter().map(|t| t.1).fold(f64::INFINITY, f64::min);
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let runs = summary["controllers"].as_array().unwrap();
+    assert_eq!(runs.len(), 1, "{summary}");
+    let name = runs[0]["name"].as_str().unwrap();
+    assert!(name.starts_with("best-looking fixed S="), "{name}");
+    let (_, flip) = tried.iter().find(|t| t.0 == name).unwrap();
+    assert_eq!(*flip, lowest, "{stderr}");
+    let reported = runs[0]["displayed_flip_mean"].as_f64().unwrap();
+    assert!((reported - lowest).abs() < 1e-4, "{reported} {lowest}");
+    let csv = std::fs::read_to_string(out.join("frames.csv")).unwrap();
+    assert!(csv.lines().skip(1).all(|l| l.starts_with(name)), "{csv}");
+    let index: Value =
+        serde_json::from_str(&std::fs::read_to_string(video.join("video.json")).unwrap()).unwrap();
+    assert_eq!(index["runs"].as_array().unwrap().len(), 1);
+    assert_eq!(index["runs"][0]["name"], name);
+    let folders = std::fs::read_dir(&video).unwrap().filter(|e| {
+        let path = e.as_ref().unwrap().path();
+        path.is_dir() && !path.ends_with("reference")
+    });
+    assert_eq!(folders.count(), 1, "the losers' videos are removed");
+}
+
+/// The best-looking fixed quality is chosen by the displayed quality: the flag without
+/// `--clock real --quality` is refused, naming it, before the scene loads (a scene that does
+/// not exist is not the error) and before anything is written.
+#[test]
+fn only_best_looking_fixed_needs_the_displayed_quality() {
+    let out = scratch("best-looking-refused");
+    for clock in [&["--clock", "real"][..], &["--quality"], &[]] {
+        let output = Command::new(BIN)
+            .args([
+                "bench",
+                "--only-best-looking-fixed",
+                "--scene",
+                "no/such/scene.toml",
+            ])
+            .args(clock)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{clock:?}");
+        assert!(
+            stderr.contains("--only-best-looking-fixed")
+                && stderr.contains("--clock real --quality"),
+            "{clock:?}: {stderr}"
+        );
+        assert!(!out.exists(), "{clock:?} wrote {}", out.display());
+    }
 }

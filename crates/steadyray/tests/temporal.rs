@@ -208,7 +208,7 @@ fn bench_runs_every_controller_without_and_with_history() {
         "1",
         "--controllers",
         "fixed,predictive",
-        "--no-best-fixed",
+        "--no-in-band-fixed",
         "--temporal",
         "both",
         "--quality",

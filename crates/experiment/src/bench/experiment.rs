@@ -1,4 +1,4 @@
-//! Running controllers over the sweep, and finding the best fixed quality.
+//! Running controllers over the sweep, and finding the most-in-band fixed quality.
 
 use super::quality::{References, flip_stats};
 use super::record::{ControllerRun, FrameRow};
@@ -131,7 +131,7 @@ pub fn run_controller(
     })
 }
 
-/// Frames of the sweep the best-fixed search looks at: about `views` evenly spaced ones.
+/// Frames of the sweep the most-in-band search looks at: about `views` evenly spaced ones.
 fn search_frames(frames: u32, views: u32) -> Vec<u32> {
     let stride = (frames / views.max(1)).max(1);
     (0..frames).step_by(stride as usize).collect()
@@ -158,11 +158,12 @@ fn scale_candidates(bounds: &Bounds) -> Vec<f32> {
 }
 
 /// Finds the single quality with the most frames in the band over (a subsample of) the
-/// sweep: the baseline a controller must beat. Frame time only grows with S and R, so the
+/// sweep: the baseline a controller must beat at holding the band (chosen by frame time
+/// alone, not by how it looks). Frame time only grows with S and R, so the
 /// share of frames over Tmax only grows too: a candidate whose frames over Tmax already
 /// exceed what the best so far left over cannot win, and neither can any costlier one along
 /// the same S (branch and bound).
-pub fn search_best_fixed(
+pub fn search_most_in_band_fixed(
     source: &mut dyn FrameSource,
     sweep: &Sweep,
     views: u32,
@@ -171,7 +172,7 @@ pub fn search_best_fixed(
     let frames = search_frames(sweep.frames, views);
     let bounds = &sweep.bounds;
     let mut best: Option<(Quality, usize)> = None;
-    progress.set_message("best fixed: search");
+    progress.set_message("most-in-band fixed: search");
     for scale in scale_candidates(bounds) {
         'spp: for spp in spp_candidates(bounds) {
             for depth in bounds.depth_min..=bounds.depth_max {

@@ -1,6 +1,8 @@
 //! `steadyray bench`: the paper's experiment (`docs/bench-protocol.md`). Every controller runs the
 //! same camera sweep from the same starting quality, one after another in one process; the
-//! paper's fixed-R baseline and the best fixed quality run beside them. Writes a table,
+//! paper's fixed-R baseline and the most-in-band fixed quality (the single fixed quality with
+//! the most frames in the band) run beside them; where the displayed quality is measured,
+//! the best-looking fixed quality too ([`best_looking`]). Writes a table,
 //! `frames.csv`, `summary.json` and `frametime.png`/`.svg` into the output folder.
 //!
 //! `--quality` also measures what each controller delivers: every `--every`-th frame's FLIP
@@ -18,6 +20,7 @@
 //! refresh ([`video`]).
 
 pub mod arms;
+pub mod best_looking;
 pub mod costs;
 pub mod displayed;
 pub mod experiment;
@@ -44,6 +47,7 @@ use crate::config::{ClockChoice, DisplaySettings, SceneConfig, TemporalChoice};
 use crate::frame_loop::FrameLoop;
 use anyhow::{Result, bail};
 use arms::{Bands, build_arms};
+pub use best_looking::BestLookingFixed;
 use costs::measure_costs;
 use experiment::Sweep;
 use indicatif::ProgressBar;
@@ -84,7 +88,9 @@ pub struct BenchConfig {
     pub band: Option<RefreshBand>,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
     /// `step:knob=both`, `predictive:order=depth,spp` or `fixed:spp=4 depth=16`. The first
-    /// `fixed` also adds the best fixed quality (unless --no-best-fixed).
+    /// `fixed` also adds the most-in-band fixed quality (unless --no-in-band-fixed) and, with
+    /// --clock real --quality, the best-looking fixed quality (unless
+    /// --no-best-looking-fixed).
     pub controllers: String,
     /// Full-scale image width (default: suits the backend, so the band is reachable).
     pub width: Option<u32>,
@@ -100,10 +106,14 @@ pub struct BenchConfig {
     /// R of the paper's fixed baseline and of every controller's start (default: the
     /// largest R). S starts at its minimum and the scale at its maximum.
     pub fixed_depth: Option<u32>,
-    /// Skip the search for the best fixed quality.
-    pub no_best_fixed: bool,
-    /// Views of the sweep the best-fixed search renders each candidate at.
+    /// Skip the search for the most-in-band fixed quality (the single fixed quality with the
+    /// most frames in the band).
+    pub no_in_band_fixed: bool,
+    /// Views of the sweep the most-in-band search renders each candidate at.
     pub search_views: u32,
+    /// Which runs of the best-looking fixed quality (the fixed quality with the lowest
+    /// displayed FLIP of a small set, [`best_looking`]) the bench makes.
+    pub best_looking_fixed: BestLookingFixed,
     /// Measure the delivered quality: FLIP of every `--every`-th frame against a reference
     /// render of the same view (outside the timed loop). Adds flip_mean and flip_p95 to
     /// summary.json and the table, a flip column to frames.csv and a quality row to the plot.
@@ -152,7 +162,7 @@ pub struct BenchConfig {
     /// reference quality and source revision render each reference once.
     pub references: Option<PathBuf>,
     /// Runs the whole experiment this many times, each repetition a fresh run (its own
-    /// renderer, costs measured before the runs and best fixed search) into
+    /// renderer, costs measured before the runs and the fixed baselines' searches) into
     /// `OUT/repeat-K/`, and reports per controller the median and range of every figure
     /// over the repetitions (`OUT/summary.json`, `OUT/table.md`, [`repeat`]). 1: one run
     /// written into `OUT` itself.
@@ -178,8 +188,9 @@ impl Default for BenchConfig {
             simulate: false,
             bounds: steadyray_control::Bounds::default(),
             fixed_depth: None,
-            no_best_fixed: false,
+            no_in_band_fixed: false,
             search_views: 48,
+            best_looking_fixed: BestLookingFixed::WithFixed,
             quality: false,
             every: 24,
             reference_spp: None,
@@ -297,13 +308,23 @@ pub fn run_once(config: &BenchConfig, repetition: u32) -> Result<()> {
         },
         resolution: described.resolution,
         video_runs: Vec::new(),
+        screen_references: screen_quality::screen_references(
+            config,
+            &described,
+            reference_quality,
+            source.as_ref(),
+        )?,
     };
     let mut runs = runner.run_arms(source.as_mut(), &mut arms, &plan.specs)?;
-    let video_runs = std::mem::take(&mut runner.video_runs);
+    let Runner {
+        video_runs,
+        mut screen_references,
+        ..
+    } = runner;
     // References are plain frames.
     source.set_temporal(false)?;
     if let Some(r) = &real {
-        let screens = (reference_quality, measured);
+        let screens = (&mut screen_references, measured);
         measure_screens(
             (config, r),
             source.as_mut(),

@@ -1,7 +1,7 @@
 //! The bench's first phase: its configuration checked before anything renders (the bounds
 //! and start quality, the clock and display, the controllers).
 
-use super::BenchConfig;
+use super::{BenchConfig, BestLookingFixed};
 use crate::config::{ClockChoice, TemporalChoice};
 use crate::files::DiskFiles;
 use anyhow::{Context, Result, bail};
@@ -19,7 +19,8 @@ pub struct Plan {
     pub start: Quality,
     /// The display under the real clock; `None` under the frame clock.
     pub display: Option<DisplayConfig>,
-    /// The controllers, one per `--controllers` entry, in order.
+    /// The controllers, one per `--controllers` entry, in order (none with
+    /// `--only-best-looking-fixed`).
     pub specs: Vec<ControllerSpec>,
 }
 
@@ -41,6 +42,7 @@ impl Plan {
         if let Some(spp) = config.reference_spp {
             check_reference_spp(spp)?;
         }
+        check_best_looking(config)?;
         let display = real_display(config)?;
         if config.simulate && config.temporal != TemporalChoice::Off {
             bail!("--temporal needs a renderer (not --simulate)");
@@ -49,7 +51,10 @@ impl Plan {
             bounds,
             start,
             display,
-            specs: parse_controllers(&config.controllers)?,
+            specs: match config.best_looking_fixed {
+                BestLookingFixed::Only => Vec::new(),
+                _ => parse_controllers(&config.controllers)?,
+            },
         };
         plan.build(Band::new(config.tmin, config.tmax)?, &plan.specs)?;
         Ok(plan)
@@ -69,6 +74,19 @@ impl Plan {
             .collect::<Result<Vec<_>>>()?;
         Ok((setup, controllers))
     }
+}
+
+/// Refuses `--only-best-looking-fixed` where the bench does not measure the displayed
+/// quality that chooses it.
+fn check_best_looking(config: &BenchConfig) -> Result<()> {
+    let measured = config.clock == ClockChoice::Real && config.quality;
+    if config.best_looking_fixed == BestLookingFixed::Only && !measured {
+        bail!(
+            "--only-best-looking-fixed chooses the fixed quality with the lowest displayed \
+             FLIP: it needs --clock real --quality"
+        );
+    }
+    Ok(())
 }
 
 /// Checks the clock options: the display's under `--clock real`, none of them under the

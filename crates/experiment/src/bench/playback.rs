@@ -86,8 +86,8 @@ mod tests {
         let dir = Path::new("out");
         assert_eq!(run_folder(dir, "predictive", 1), dir);
         assert_eq!(
-            run_folder(dir, "best fixed S=2 R=5", 3),
-            dir.join("best_fixed_S=2_R=5")
+            run_folder(dir, "most-in-band fixed S=2 R=5", 3),
+            dir.join("most-in-band_fixed_S=2_R=5")
         );
     }
 }

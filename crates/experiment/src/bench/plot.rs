@@ -401,9 +401,18 @@ fn method_of(name: &str) -> (&str, bool) {
     }
 }
 
-/// Whether a run is a fixed quality (the paper's baseline, the best fixed, or any other).
+/// Whether a run is a fixed quality: the paper's baseline or any other `fixed`, the
+/// most-in-band or the best-looking fixed quality (or the most-in-band one under its old
+/// name, "best fixed", in summaries written before it was renamed).
 fn is_fixed(name: &str) -> bool {
-    name.starts_with("fixed") || name.starts_with("best fixed")
+    [
+        "fixed",
+        "most-in-band fixed",
+        "best-looking fixed",
+        "best fixed",
+    ]
+    .iter()
+    .any(|prefix| name.starts_with(prefix))
 }
 
 /// One method on the JOD plot.
@@ -537,4 +546,24 @@ where
     }
     let (_, legend) = legend.split_vertically(50);
     draw_legend(&legend, &entries)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed_qualities_under_every_name_are_fixed() {
+        for name in [
+            "fixed S=1 R=16",
+            "most-in-band fixed S=2 R=5",
+            "best-looking fixed S=1 R=16 x0.75 +temporal",
+            "best fixed S=4 R=0 x0.5",
+        ] {
+            assert!(is_fixed(name), "{name}");
+        }
+        for name in ["predictive", "step:knob=both", "perceptual +temporal +warp"] {
+            assert!(!is_fixed(name), "{name}");
+        }
+    }
 }

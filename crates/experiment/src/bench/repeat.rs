@@ -4,7 +4,7 @@
 //! `OUT/summary.json`, `OUT/table.md` and the table printed at the end.
 //!
 //! Every repetition opens its renderer afresh and measures again what the runs need
-//! measured before them (the hand-over, the warped refresh, the best fixed search), so the
+//! measured before them (the hand-over, the warped refresh, the fixed baselines' searches), so the
 //! spread is that of fresh runs on the machine; on the simulated renderer repetition K draws
 //! its noise from seed K (repetition 1 is the single run's).
 

@@ -74,8 +74,8 @@ fn controllers(summaries: &[Value]) -> Result<Vec<Value>> {
 }
 
 /// One controller's entries over the repetitions: its name (the words its names share,
-/// with every repetition's name in `names` where they differ, as the best fixed quality
-/// may), and each figure as `{median, min, max, runs}`; a field without a number in any
+/// with every repetition's name in `names` where they differ, as the fixed baselines'
+/// qualities may), and each figure as `{median, min, max, runs}`; a field without a number in any
 /// repetition is kept where they agree, else as `{runs: [...]}`.
 fn merge_controller(entries: &[&Value]) -> Value {
     let names: Vec<&str> = entries
@@ -129,19 +129,38 @@ fn agreed_or_runs(values: Vec<Value>) -> Value {
     }
 }
 
-/// The leading words all `names` share (`best fixed` of `best fixed S=2 R=5` and
-/// `best fixed S=3 R=4`), or the name itself where they are the same.
+/// The name of runs named `names` in the repetitions: the name itself where they are the
+/// same; else the leading words they share before a fixed quality's label (`most-in-band
+/// fixed` of `most-in-band fixed S=2 R=5` and `most-in-band fixed S=3 R=5`, and of `... S=2
+/// R=5 x0.75`, whose shared `S=2 R=5` would claim a quality one repetition did not run),
+/// then the temporal mode they share (`+temporal`, `+warp`).
 fn shared_words(names: &[&str]) -> String {
-    let first: Vec<&str> = names[0].split(' ').collect();
-    let shared = names.iter().fold(first.len(), |n, name| {
+    if names.iter().all(|name| *name == names[0]) {
+        return names[0].to_string();
+    }
+    let words: Vec<Vec<&str>> = names.iter().map(|name| name.split(' ').collect()).collect();
+    let first = &words[0];
+    let before_quality = first.iter().take_while(|w| !w.starts_with("S=")).count();
+    let lead = words.iter().fold(before_quality, |n, other| {
         first
             .iter()
-            .zip(name.split(' '))
+            .zip(other)
             .take(n)
-            .take_while(|(a, b)| *a == b)
+            .take_while(|(a, b)| a == b)
             .count()
     });
-    first[..shared].join(" ")
+    let modes = words.iter().fold(first.len() - lead, |n, other| {
+        first
+            .iter()
+            .rev()
+            .zip(other.iter().rev())
+            .take(n)
+            .take_while(|(a, b)| a == b && a.starts_with('+'))
+            .count()
+    });
+    let mut shared = first[..lead].to_vec();
+    shared.extend(&first[first.len() - modes..]);
+    shared.join(" ")
 }
 
 /// The table of a repeated bench's summary (Markdown): one row per controller, each figure
@@ -197,16 +216,16 @@ mod tests {
     #[test]
     fn figures_become_medians_and_ranges_of_the_repetitions() {
         let summaries = [
-            json!({ "clock": "frames", "frames": 720, "controllers": [run("best fixed S=2 R=5", 90.0, json!(4))] }),
-            json!({ "clock": "frames", "frames": 720, "controllers": [run("best fixed S=3 R=5", 80.0, Value::Null)] }),
-            json!({ "clock": "frames", "frames": 720, "controllers": [run("best fixed S=2 R=4", 95.0, json!(6))] }),
+            json!({ "clock": "frames", "frames": 720, "controllers": [run("most-in-band fixed S=2 R=5", 90.0, json!(4))] }),
+            json!({ "clock": "frames", "frames": 720, "controllers": [run("most-in-band fixed S=3 R=5", 80.0, Value::Null)] }),
+            json!({ "clock": "frames", "frames": 720, "controllers": [run("most-in-band fixed S=2 R=4", 95.0, json!(6))] }),
         ];
         let summary = summarise(&summaries).unwrap();
         assert_eq!(summary["repeat"], 3);
         assert_eq!(summary["frames"], 720);
         let c = &summary["controllers"][0];
-        assert_eq!(c["name"], "best fixed");
-        assert_eq!(c["names"][1], "best fixed S=3 R=5");
+        assert_eq!(c["name"], "most-in-band fixed");
+        assert_eq!(c["names"][1], "most-in-band fixed S=3 R=5");
         let in_band = &c["in_band_pct"];
         assert_eq!(in_band["median"], 90.0);
         assert_eq!(in_band["min"], 80.0);
@@ -218,7 +237,29 @@ mod tests {
         assert_eq!(c["band_ms"], json!([15.0, 20.0]));
         let table = repeated_table(&summary);
         assert!(table.starts_with("Each figure: median [min–max] over 3 runs."));
-        assert!(table.contains("| best fixed | 90.0 [80.0–95.0] |"));
+        assert!(table.contains("| most-in-band fixed | 90.0 [80.0–95.0] |"));
+    }
+
+    #[test]
+    fn names_that_differ_share_the_words_before_the_quality_and_the_temporal_mode() {
+        let shared = |names: &[&str]| shared_words(names);
+        assert_eq!(shared(&["predictive", "predictive"]), "predictive");
+        assert_eq!(
+            shared(&[
+                "best-looking fixed S=1 R=16 x0.75 +temporal +warp",
+                "best-looking fixed S=1 R=16 +temporal +warp",
+            ]),
+            "best-looking fixed +temporal +warp"
+        );
+        assert_eq!(
+            shared(&["most-in-band fixed S=2 R=5", "most-in-band fixed S=2 R=4"]),
+            "most-in-band fixed"
+        );
+        // Summaries written before the rename share words the same way.
+        assert_eq!(
+            shared(&["best fixed S=2 R=5", "best fixed S=3 R=5"]),
+            "best fixed"
+        );
     }
 
     #[test]

@@ -1,23 +1,26 @@
 //! The bench's runs: every controller of every arm over the sweep (frame clock) or for a
-//! span of display time (real clock), the best fixed quality after the first `fixed`, and
-//! what each finished run leaves behind (its recording, its video, the pictures its
-//! displayed quality still needs).
+//! span of display time (real clock), the fixed baselines after the first `fixed` (the
+//! most-in-band fixed quality and, where the displayed quality is measured, the
+//! best-looking one), and what each finished run leaves behind (its recording, its video,
+//! the pictures its displayed quality still needs).
 
-use super::BenchConfig;
 use super::arms::Arm;
-use super::displayed::run_samples;
-use super::experiment::{Capture, Sweep, run_controller, search_best_fixed};
+use super::best_looking::{self, lowest_flip};
+use super::displayed::{TimedReferences, run_samples};
+use super::experiment::{Capture, Sweep, run_controller, search_most_in_band_fixed};
 use super::playback;
 use super::quality::References;
 use super::real_clock::{Keep, RealSweep, run_controller_real};
 use super::record::ControllerRun;
 use super::report::quality_label;
+use super::screen_quality::{Scoring, score_runs};
 use super::source::FrameSource;
 use super::video::{self, VideoRun};
-use anyhow::Result;
+use super::{BenchConfig, BestLookingFixed};
+use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use std::collections::BTreeSet;
-use steadyray_control::{Band, Bounds, Controller, ControllerSpec, Setup, from_name};
+use steadyray_control::{Band, Bounds, Controller, ControllerSpec, Quality, Setup, from_name};
 
 /// What every run shares, and what the finished runs left for after them.
 pub struct Runner<'a> {
@@ -43,19 +46,41 @@ pub struct Runner<'a> {
     pub resolution: (u32, u32),
     /// The videos written so far (`--video`).
     pub video_runs: Vec<VideoRun>,
+    /// The references of the screen every run's displayed quality is measured against
+    /// (real clock, `--quality`): those the best-looking search renders are shared with the
+    /// runs measured after the runs.
+    pub screen_references: TimedReferences,
 }
 
 impl Runner<'_> {
-    /// How many runs the bench makes: every controller in every arm, and the best fixed
-    /// quality once per arm after the first `fixed` (unless `--no-best-fixed`).
+    /// Whether the best-looking fixed quality runs after the first `fixed` of each arm: where
+    /// the displayed quality is measured, unless `--no-best-looking-fixed`.
+    fn best_looking_with_fixed(&self) -> bool {
+        self.config.best_looking_fixed == BestLookingFixed::WithFixed
+            && self.real.is_some()
+            && self.config.quality
+    }
+
+    /// How many runs the bench reports: every controller in every arm, and once per arm
+    /// after the first `fixed` the most-in-band fixed quality (unless `--no-in-band-fixed`)
+    /// and the best-looking one (where it runs); with `--only-best-looking-fixed`, the
+    /// best-looking one per arm.
     fn run_count(&self, specs: &[ControllerSpec]) -> usize {
-        let best_fixed = !self.config.no_best_fixed && specs.iter().any(|s| s.name == "fixed");
-        self.config.temporal.modes().len() * (specs.len() + usize::from(best_fixed))
+        let per_arm = match self.config.best_looking_fixed {
+            BestLookingFixed::Only => 1,
+            _ if specs.iter().any(|s| s.name == "fixed") => {
+                specs.len()
+                    + usize::from(!self.config.no_in_band_fixed)
+                    + usize::from(self.best_looking_with_fixed())
+            }
+            _ => specs.len(),
+        };
+        self.config.temporal.modes().len() * per_arm
     }
 
     /// Runs every controller of every arm, in the order of `specs` (each controller in
-    /// every arm before the next), the best fixed quality after the first `fixed` of each
-    /// arm.
+    /// every arm before the next), the fixed baselines after the first `fixed` of each arm;
+    /// with `--only-best-looking-fixed` the best-looking fixed quality of each arm alone.
     pub fn run_arms(
         &mut self,
         source: &mut dyn FrameSource,
@@ -64,9 +89,9 @@ impl Runner<'_> {
     ) -> Result<Vec<ControllerRun>> {
         let run_count = self.run_count(specs);
         let mut runs = Vec::new();
-        let mut best_fixed_due = vec![!self.config.no_best_fixed; arms.len()];
+        let mut baselines_due = vec![true; arms.len()];
         for (i, spec) in specs.iter().enumerate() {
-            for (arm, best_due) in arms.iter_mut().zip(&mut best_fixed_due) {
+            for (arm, due) in arms.iter_mut().zip(&mut baselines_due) {
                 let suffix = self.suffix(arm.temporal);
                 let controller = &mut arm.controllers[i];
                 let label = match spec.name.as_str() {
@@ -81,11 +106,21 @@ impl Runner<'_> {
                 let mode = (arm.band, arm.temporal);
                 let run = self.run_one(source, controller.as_mut(), &label, mode)?;
                 runs.push(self.keep(run, run_count)?);
-                if spec.name == "fixed" && *best_due {
-                    *best_due = false;
-                    let run = self.run_best_fixed(source, (arm.band, arm.setup), arm.temporal)?;
-                    runs.push(self.keep(run, run_count)?);
+                if spec.name == "fixed" && *due {
+                    *due = false;
+                    if !self.config.no_in_band_fixed {
+                        let run = self.run_most_in_band_fixed(source, arm)?;
+                        runs.push(self.keep(run, run_count)?);
+                    }
+                    if self.best_looking_with_fixed() {
+                        runs.push(self.run_best_looking_fixed(source, arm, run_count)?);
+                    }
                 }
+            }
+        }
+        if self.config.best_looking_fixed == BestLookingFixed::Only {
+            for arm in arms.iter() {
+                runs.push(self.run_best_looking_fixed(source, arm, run_count)?);
             }
         }
         Ok(runs)
@@ -100,31 +135,122 @@ impl Runner<'_> {
         }
     }
 
-    /// Searches the best fixed quality of an arm in its band and runs it.
-    fn run_best_fixed(
+    /// Searches the most-in-band fixed quality of an arm in its band and runs it.
+    fn run_most_in_band_fixed(
         &self,
         source: &mut dyn FrameSource,
-        (band, setup): (Band, Setup),
-        temporal: bool,
+        arm: &Arm,
     ) -> Result<ControllerRun> {
         self.progress.inc_length(self.per_run);
-        let arm_sweep = Sweep { band, ..self.sweep };
-        let best = search_best_fixed(source, &arm_sweep, self.config.search_views, self.progress)?;
-        let mut fixed = from_name(
-            "fixed",
-            Setup {
-                start: best,
-                ..setup
-            },
-            "",
-        )?;
+        let arm_sweep = Sweep {
+            band: arm.band,
+            ..self.sweep
+        };
+        let views = self.config.search_views;
+        let best = search_most_in_band_fixed(source, &arm_sweep, views, self.progress)?;
+        self.run_fixed(source, arm, best, "most-in-band fixed")
+    }
+
+    /// Runs the fixed quality `quality` in `arm`, labelled `name` and the quality.
+    fn run_fixed(
+        &self,
+        source: &mut dyn FrameSource,
+        arm: &Arm,
+        quality: Quality,
+        name: &str,
+    ) -> Result<ControllerRun> {
+        let setup = Setup {
+            start: quality,
+            ..arm.setup
+        };
+        let mut fixed = from_name("fixed", setup, "")?;
         let label = format!(
-            "best fixed {}{}",
-            quality_label(&best, &self.bounds),
-            self.suffix(temporal)
+            "{name} {}{}",
+            quality_label(&quality, &self.bounds),
+            self.suffix(arm.temporal)
         );
-        source.set_temporal(temporal)?;
-        self.run_one(source, fixed.as_mut(), &label, (band, temporal))
+        source.set_temporal(arm.temporal)?;
+        self.run_one(source, fixed.as_mut(), &label, (arm.band, arm.temporal))
+    }
+
+    /// Runs every candidate of the best-looking fixed quality in `arm` for the display span
+    /// ([`best_looking`]), each kept (its video written) and its displayed quality measured
+    /// at once, and returns the one with the lowest displayed FLIP; the others' videos are
+    /// removed. Says on stderr what each scored.
+    fn run_best_looking_fixed(
+        &mut self,
+        source: &mut dyn FrameSource,
+        arm: &Arm,
+        run_count: usize,
+    ) -> Result<ControllerRun> {
+        let real = self
+            .real
+            .context("the best-looking fixed quality is chosen on the real clock")?;
+        let scoring = Scoring {
+            period_ms: real.display.period_ms(),
+            measured: self.measured,
+            size: self.resolution,
+        };
+        let candidates = best_looking::candidates(&self.bounds);
+        self.progress
+            .inc_length(self.per_run * candidates.len() as u64);
+        let mut tried = Vec::with_capacity(candidates.len());
+        for quality in candidates {
+            tried.push(self.run_candidate(source, (arm, quality), scoring, run_count)?);
+        }
+        let flips: Vec<Option<f64>> = tried.iter().map(|(_, flip)| *flip).collect();
+        let best = lowest_flip(&flips)
+            .context("no best-looking fixed candidate showed a sample to score (--duration)")?;
+        let (winner, flip) = tried.swap_remove(best);
+        for (loser, _) in &tried {
+            self.remove_video(&loser.name)?;
+        }
+        self.say(&format!(
+            "bench: {}: the lowest displayed FLIP ({:.4}) of {} candidates",
+            winner.name,
+            flip.unwrap_or_default(),
+            tried.len() + 1
+        ));
+        Ok(winner)
+    }
+
+    /// Runs one best-looking fixed candidate, `quality` in `arm`, keeps it (its video
+    /// written) and measures its displayed quality at once; says its displayed FLIP.
+    fn run_candidate(
+        &mut self,
+        source: &mut dyn FrameSource,
+        (arm, quality): (&Arm, Quality),
+        scoring: Scoring,
+        run_count: usize,
+    ) -> Result<(ControllerRun, Option<f64>)> {
+        let run = self.run_fixed(source, arm, quality, best_looking::LABEL)?;
+        let mut run = self.keep(run, run_count)?;
+        // References are plain frames.
+        source.set_temporal(false)?;
+        let references = &mut self.screen_references;
+        let runs = std::slice::from_mut(&mut run);
+        score_runs(runs, scoring, references, source, self.progress)?;
+        let flip = displayed_flip(&run);
+        let score = flip.map_or_else(|| "- (no sample)".to_string(), |f| format!("{f:.4}"));
+        self.say(&format!("bench: {}: displayed FLIP {score}", run.name));
+        Ok((run, flip))
+    }
+
+    /// Says `line` on stderr, above the progress bar (also where the bar is hidden).
+    fn say(&self, line: &str) {
+        self.progress.suspend(|| eprintln!("{line}"));
+    }
+
+    /// Removes the video of the run named `name` (`--video`), if one was written.
+    fn remove_video(&mut self, name: &str) -> Result<()> {
+        let Some(dir) = &self.config.video else {
+            return Ok(());
+        };
+        if let Some(i) = self.video_runs.iter().position(|v| v.name == name) {
+            let removed = self.video_runs.remove(i);
+            video::remove_run(dir, &removed.folder)?;
+        }
+        Ok(())
     }
 
     /// One run of `controller` in `band`: over the sweep, or under the real clock (a
@@ -195,4 +321,12 @@ impl Runner<'_> {
         }
         Ok(run)
     }
+}
+
+/// A real-clock run's displayed FLIP (mean over its samples), once measured.
+fn displayed_flip(run: &ControllerRun) -> Option<f64> {
+    run.display
+        .as_ref()
+        .and_then(|shown| shown.quality.as_ref())
+        .map(|q| q.flip_mean)
 }

@@ -1,6 +1,7 @@
 //! After the real clock's runs: the references of the screen (every refresh's with
 //! `--video`, written for the JOD tool) and the displayed quality of every run
-//! (`--quality`), measured against them.
+//! (`--quality`), measured against them; and the displayed quality of one run as soon as it
+//! ran, for the best-looking fixed quality's search ([`score_runs`]).
 
 use super::BenchConfig;
 use super::displayed::{self, TimedReferences, run_samples, time_key};
@@ -29,37 +30,86 @@ pub struct Described {
     pub resolution: (u32, u32),
 }
 
+/// What measuring a real-clock run's displayed quality needs besides its references: the
+/// display's refresh period, the samples measured and the full-scale size.
+#[derive(Clone, Copy, Debug)]
+pub struct Scoring {
+    /// The display's refresh period, ms.
+    pub period_ms: f64,
+    /// The samples of the screen measured.
+    pub measured: Keep,
+    /// The full-scale size.
+    pub size: (u32, u32),
+}
+
+impl Scoring {
+    /// The world times the displayed quality of `runs` not measured yet compares with: each
+    /// sampled refresh's and the world time of the frame on screen then.
+    fn needed_times(&self, runs: &[ControllerRun]) -> Vec<f64> {
+        let mut needed = Vec::new();
+        for shown in runs.iter().filter_map(|run| run.display.as_ref()) {
+            if shown.quality.is_none() {
+                for s in run_samples(shown, self.period_ms, |i| self.measured.wants(i)) {
+                    needed.extend([s.time_s, s.world_s]);
+                }
+            }
+        }
+        needed
+    }
+}
+
+/// Measures the displayed quality of those real-clock `runs` not measured yet against
+/// `references` (shared by every run of the bench; those missing rendered first, as plain
+/// frames of the current temporal mode of `source`) and frees their pictures.
+pub fn score_runs(
+    runs: &mut [ControllerRun],
+    scoring: Scoring,
+    references: &mut TimedReferences,
+    source: &mut dyn FrameSource,
+    progress: &ProgressBar,
+) -> Result<()> {
+    progress.set_message("displayed quality");
+    references.render_missing(source, scoring.needed_times(runs), || {
+        progress.inc_length(1);
+        progress.inc(1);
+    })?;
+    let ppd = ViewingSetup::standard_fhd().pixels_per_degree(scoring.size.0) as f32;
+    for run in runs.iter_mut() {
+        if let Some(shown) = run.display.as_mut()
+            && shown.quality.is_none()
+        {
+            let samples = run_samples(shown, scoring.period_ms, |i| scoring.measured.wants(i));
+            shown.quality = displayed::measure(shown, &samples, references, scoring.size, ppd)?;
+            shown.pictures.clear();
+            shown.warps.pictures.clear();
+        }
+    }
+    Ok(())
+}
+
 /// Renders the references the real clock's runs need (every refresh's into `--video`'s
-/// folder, with its `video.json` naming `video_runs`) and measures each run's displayed
-/// quality (`--quality`, at the samples `measured` asks for); the runs' pictures are freed.
+/// folder, with its `video.json` naming `video_runs`) and measures the displayed quality of
+/// each run not measured yet (`--quality`, at the samples `measured` asks for) against
+/// `references`, which every run shares; the runs' pictures are freed.
 pub fn measure_screens(
     (config, real): (&BenchConfig, &RealSweep),
     source: &mut dyn FrameSource,
     runs: &mut [ControllerRun],
-    (reference_quality, measured): (Quality, Keep),
+    (references, measured): (&mut TimedReferences, Keep),
     described: &Described,
     video_runs: Vec<VideoRun>,
     progress: &ProgressBar,
 ) -> Result<()> {
     let period = real.display.period_ms();
     let refreshes = refresh_at_or_after(real.duration_s * 1000.0, period) as usize;
-    // The world times the displayed quality compares with: each sampled refresh's and the
-    // world time of the frame on screen then.
-    let mut needed = Vec::new();
-    for run in runs.iter() {
-        if let Some(shown) = &run.display {
-            for s in run_samples(shown, period, |i| measured.wants(i)) {
-                needed.extend([s.time_s, s.world_s]);
-            }
-        }
-    }
-    let mut references = TimedReferences::new(reference_quality);
-    if let Some(dir) = &config.references {
-        let store = ReferenceStore::open(dir, &store_key(described, reference_quality, source))?;
-        eprintln!("bench: references kept in {}", store.folder().display());
-        references = references.with_store(store);
-    }
+    let scoring = Scoring {
+        period_ms: period,
+        measured,
+        size: described.resolution,
+    };
+    let reference_quality = references.quality();
     if let Some(dir) = &config.video {
+        let needed = scoring.needed_times(runs);
         let needed_keys: BTreeSet<i64> = needed.iter().map(|&t| time_key(t)).collect();
         let grid: Vec<f64> = (0..refreshes).map(|i| i as f64 * period / 1000.0).collect();
         progress.inc_length(refreshes as u64);
@@ -81,7 +131,7 @@ pub fn measure_screens(
             &key,
             &grid,
             source,
-            &mut references,
+            references,
             |t| needed_keys.contains(&time_key(t)),
             || progress.inc(1),
         )?;
@@ -101,29 +151,27 @@ pub fn measure_screens(
         )?;
     }
     if config.quality {
-        progress.set_message("displayed quality");
-        references.render_missing(source, needed, || {
-            progress.inc_length(1);
-            progress.inc(1);
-        })?;
-        let (width, _) = described.resolution;
-        let ppd = ViewingSetup::standard_fhd().pixels_per_degree(width) as f32;
-        for run in runs.iter_mut() {
-            if let Some(shown) = run.display.as_mut() {
-                let samples = run_samples(shown, period, |i| measured.wants(i));
-                shown.quality = displayed::measure(
-                    shown,
-                    &samples,
-                    &mut references,
-                    described.resolution,
-                    ppd,
-                )?;
-                shown.pictures.clear();
-                shown.warps.pictures.clear();
-            }
-        }
+        score_runs(runs, scoring, references, source, progress)?;
     }
     Ok(())
+}
+
+/// The references every real-clock run of the bench shares, empty at first: with
+/// `--references DIR`, backed by the store of this scene, renderer, size, reference quality
+/// and revision in `DIR`.
+pub fn screen_references(
+    config: &BenchConfig,
+    described: &Described,
+    quality: Quality,
+    source: &dyn FrameSource,
+) -> Result<TimedReferences> {
+    let references = TimedReferences::new(quality);
+    let Some(dir) = &config.references else {
+        return Ok(references);
+    };
+    let store = ReferenceStore::open(dir, &store_key(described, quality, source))?;
+    eprintln!("bench: references kept in {}", store.folder().display());
+    Ok(references.with_store(store))
 }
 
 /// What the references of this bench are of, for `--references`.

@@ -272,6 +272,13 @@ pub fn write_run(
     Ok(folder_name)
 }
 
+/// Removes the folder `folder` of a run's video from `dir` (a run the bench does not report
+/// after all: a best-looking fixed candidate that did not win).
+pub fn remove_run(dir: &Path, folder: &str) -> Result<()> {
+    let path = dir.join(folder);
+    std::fs::remove_dir_all(&path).with_context(|| format!("cannot remove {}", path.display()))
+}
+
 /// What a reference folder holds: a later bench reuses it when all of this matches.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceKey {

@@ -5,7 +5,7 @@ use super::{BoundsArgs, ClockChoice, DisplayArgs, SceneArgs, TemporalChoice};
 use clap::{Args, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use steadyray_display::RefreshBand;
-use steadyray_experiment::bench::BenchConfig;
+use steadyray_experiment::bench::{BenchConfig, BestLookingFixed};
 use steadyray_experiment::calibrate::CalibrateConfig;
 use steadyray_experiment::compare::CompareConfig;
 use steadyray_experiment::jod::JodCommand as JodConfig;
@@ -42,8 +42,9 @@ pub struct BenchArgs {
     pub band: Option<RefreshBand>,
     /// Controllers to run, comma separated; each may take options after a colon, e.g.
     /// `step:knob=both`, `predictive:order=depth,spp` or `fixed:spp=4 depth=16`. The first
-    /// `fixed` also adds the best fixed quality (unless --no-best-fixed). `steadyray
-    /// controllers` lists every option.
+    /// `fixed` also adds the most-in-band fixed quality (unless --no-in-band-fixed) and, with
+    /// --clock real --quality, the best-looking fixed quality (unless
+    /// --no-best-looking-fixed). `steadyray controllers` lists every option.
     #[arg(
         long,
         default_value = "fixed,step,step:knob=both,hysteresis,predictive"
@@ -67,12 +68,25 @@ pub struct BenchArgs {
     /// largest R). S starts at its minimum and the scale at its maximum.
     #[arg(long)]
     pub fixed_depth: Option<u32>,
-    /// Skip the search for the best fixed quality.
-    #[arg(long)]
-    pub no_best_fixed: bool,
-    /// Views of the sweep the best-fixed search renders each candidate at.
+    /// Skip the most-in-band fixed quality: the single fixed quality with the most frames in
+    /// the band, found by a search over the sweep (chosen by frame time alone, not by how
+    /// it looks). Its old name --no-best-fixed still works.
+    #[arg(long, alias = "no-best-fixed")]
+    pub no_in_band_fixed: bool,
+    /// Views of the sweep the most-in-band search renders each candidate at.
     #[arg(long, default_value_t = 48)]
     pub search_views: u32,
+    /// Skip the best-looking fixed quality, which --clock real --quality adds after the
+    /// first `fixed`: of nine fixed qualities (S 1, 2, 4; R 2, 4, 16; scale 0.5, 0.75, 1;
+    /// docs/bench-protocol.md), each run for the display span, the one with the lowest
+    /// displayed FLIP (its JOD, scored after the bench, is reported like any run's).
+    #[arg(long, conflicts_with = "only_best_looking_fixed")]
+    pub no_best_looking_fixed: bool,
+    /// Run the best-looking fixed quality alone (once per temporal mode): its nine
+    /// candidates, and the winner reported as the bench's only run. Needs --clock real
+    /// --quality.
+    #[arg(long, conflicts_with = "controllers")]
+    pub only_best_looking_fixed: bool,
     /// Measure the delivered quality: FLIP of every `--every`-th frame against a reference
     /// render of the same view (outside the timed loop). Adds flip_mean and flip_p95 to
     /// summary.json and the table, a flip column to frames.csv and a quality row to the plot.
@@ -139,7 +153,7 @@ pub struct BenchArgs {
     pub references: Option<PathBuf>,
     /// Run the whole experiment N times, each repetition a fresh run into OUT/repeat-K/ (as
     /// a single run writes OUT): its own renderer, and the costs measured before the runs
-    /// (hand-over, warped refresh, best fixed search) measured again; the simulated
+    /// (hand-over, warped refresh, the fixed baselines' searches) measured again; the simulated
     /// renderer draws repetition K's noise from seed K. OUT/summary.json, OUT/table.md and
     /// the table printed at the end give every figure per controller as median [min–max]
     /// over the N runs (summary.json: {median, min, max, runs}). 1: a single run into OUT.
@@ -186,8 +200,13 @@ impl From<&BenchArgs> for BenchConfig {
             simulate: args.simulate,
             bounds: (&args.bounds).into(),
             fixed_depth: args.fixed_depth,
-            no_best_fixed: args.no_best_fixed,
+            no_in_band_fixed: args.no_in_band_fixed,
             search_views: args.search_views,
+            best_looking_fixed: match (args.no_best_looking_fixed, args.only_best_looking_fixed) {
+                (_, true) => BestLookingFixed::Only,
+                (true, false) => BestLookingFixed::Skip,
+                (false, false) => BestLookingFixed::WithFixed,
+            },
             quality: args.quality,
             every: args.every,
             reference_spp: args.reference_spp,
@@ -537,6 +556,48 @@ mod tests {
             panic!("not the bench");
         };
         assert_eq!(BenchConfig::from(&args), BenchConfig::default());
+    }
+
+    /// The bench's config of `steadyray bench` with `flags`.
+    fn bench_config(flags: &[&str]) -> BenchConfig {
+        let args = ["steadyray", "bench"].iter().chain(flags);
+        let Command::Bench(args) = Cli::try_parse_from(args).unwrap().command else {
+            panic!("not the bench");
+        };
+        BenchConfig::from(&args)
+    }
+
+    #[test]
+    fn the_fixed_baselines_flags() {
+        assert!(bench_config(&["--no-in-band-fixed"]).no_in_band_fixed);
+        assert!(
+            bench_config(&["--no-best-fixed"]).no_in_band_fixed,
+            "the old name still works"
+        );
+        assert_eq!(
+            bench_config(&["--no-best-looking-fixed"]).best_looking_fixed,
+            BestLookingFixed::Skip
+        );
+        assert_eq!(
+            bench_config(&["--only-best-looking-fixed"]).best_looking_fixed,
+            BestLookingFixed::Only
+        );
+        for other in ["--controllers", "--no-best-looking-fixed"] {
+            let args = [
+                "steadyray",
+                "bench",
+                "--only-best-looking-fixed",
+                other,
+                "fixed",
+            ];
+            let args = if other == "--controllers" {
+                &args[..]
+            } else {
+                &args[..4]
+            };
+            let err = Cli::try_parse_from(args).unwrap_err().to_string();
+            assert!(err.contains("--only-best-looking-fixed"), "{other}: {err}");
+        }
     }
 }
 
