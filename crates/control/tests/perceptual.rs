@@ -6,8 +6,8 @@ mod common;
 use common::{FAST, FRAME_TIMES, model, model_file};
 use steadyray_control::simulate::{Load, LoadProfile, RendererModel, SimRenderer};
 use steadyray_control::{
-    Band, Bounds, Controller, DisplayCosts, Perceptual, PerceptualParams, Quality, ReportError,
-    Setup,
+    Band, Bounds, Controller, DisplayCosts, MotionModel, Perceptual, PerceptualParams, Quality,
+    ReportError, Setup,
 };
 
 fn controller() -> Perceptual {
@@ -144,6 +144,40 @@ fn the_target_follows_the_speed_profile_and_holds_each_change() {
     assert!(jittery <= 1, "{changes:?}");
 }
 
+/// Out of the box (the shipped model, no options): a still picture gets the longest frame
+/// time and the best picture it affords; a fast turn the shortest frame time within a few
+/// frames, and back to the longest once still again.
+#[test]
+fn the_shipped_model_gives_long_frames_when_still_and_short_ones_in_fast_motion() {
+    let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+    let mut c = Perceptual::new(setup, PerceptualParams::default()).unwrap();
+    let times = c.model().frame_times_ms.clone();
+    let (shortest, longest) = (times[0], times[times.len() - 1]);
+    let fastest = *c.model().speeds_deg_s.last().unwrap();
+    let mut speeds = vec![0.0; 120];
+    speeds.extend(std::iter::repeat_n(fastest, 120));
+    speeds.extend(std::iter::repeat_n(0.0, 240));
+    let steps = run(&mut c, &speeds);
+    let still = &steps[60..120];
+    assert!(
+        still.iter().all(|s| s.target_ms == longest),
+        "{:?}",
+        switches(&steps)
+    );
+    let moved = (120..240)
+        .find(|&i| steps[i].target_ms == shortest)
+        .expect("fast motion never got the shortest frame time");
+    assert!(
+        moved - 120 <= 3,
+        "moved {} frames after the turn",
+        moved - 120
+    );
+    assert!(steps[moved..240].iter().all(|s| s.target_ms == shortest));
+    assert!(steps[400..].iter().all(|s| s.target_ms == longest));
+    let (q_still, q_fast) = (steps[119].quality, steps[239].quality);
+    assert!(q_fast.level() < q_still.level(), "{q_fast} vs {q_still}");
+}
+
 #[test]
 fn a_bad_speed_is_refused_and_changes_nothing() {
     let mut c = controller();
@@ -166,11 +200,14 @@ fn a_bad_speed_is_refused_and_changes_nothing() {
 #[test]
 fn options_are_checked() {
     let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
-    let needs_model = steadyray_control::from_name("perceptual", setup, "").unwrap_err();
-    assert!(
-        needs_model.to_string().contains("calibrate --motion"),
-        "{needs_model}"
-    );
+    // No options: the shipped model.
+    let shipped = steadyray_control::from_name("perceptual", setup, "").unwrap();
+    let longest = MotionModel::shipped()
+        .unwrap()
+        .frame_times_ms
+        .last()
+        .copied();
+    assert_eq!(shipped.target_frame_ms(), longest);
     let mut p = PerceptualParams::default();
     assert!(
         p.set("ladder", "x.json")
