@@ -52,8 +52,8 @@
 //!   reverse (S goes first, resolution next). `ladder`=PATH: move
 //!   along a calibrated Pareto front of (S, R, scale) settings instead ([`ladder`]).
 //! - `perceptual` ([`Perceptual`]): chooses the frame time too. From a quality model over
-//!   (screen speed, frame time, ladder point) ([`motion_model`], `model`=PATH, measured by
-//!   `calibrate --motion`) it picks, at each frame's measured speed, the frame time whose
+//!   (screen speed, frame time, ladder point) ([`motion_model`]: the one shipped with the
+//!   crate, or `model`=PATH, measured on the scene by `calibrate --motion`) it picks, at each frame's measured speed, the frame time whose
 //!   best fitting ladder point looks best, and lets an inner `predictive` hold that time;
 //!   changes of the target are held `hold_ms`=500 and need a `margin`=0.02 of the model's
 //!   spread; the speed decided on falls with a time constant `fall_ms`=300. `hand_over`=1 ms,

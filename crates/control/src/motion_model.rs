@@ -42,10 +42,23 @@
 //! Between grid values the model interpolates linearly in speed and in the ladder position
 //! (as the `predictive` controller moves between ladder points), and holds the end values
 //! beyond the grid's speeds.
+//!
+//! # The shipped default
+//!
+//! [`MotionModel::shipped`] is a model that comes with the crate
+//! (`models/default-motion.json`), for `perceptual` without a model of its own scene: one
+//! ladder, and scores that are the mean ([`MotionModel::mean`]) of models calibrated on that
+//! ladder on several scenes. Any ladder works on any scene (the controller predicts each
+//! point's cost on the current view from the measured rays), so what the mean gives up is
+//! only each scene's own ordering of the frame times at each speed. How it was made, and how
+//! to make it again: `docs/default-motion-model.md`.
 
 use crate::ladder::Ladder;
 use serde::{Deserialize, Serialize};
 use std::fmt;
+
+/// The text of the shipped default model (see [`MotionModel::shipped`]).
+pub const SHIPPED_MODEL_JSON: &str = include_str!("../models/default-motion.json");
 
 /// What a model's scores measure.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -169,6 +182,88 @@ impl MotionModel {
         let model: MotionModel = serde_json::from_str(text).map_err(|e| e.to_string())?;
         model.validate()?;
         Ok(model)
+    }
+
+    /// The model that ships with the crate (`models/default-motion.json`): what
+    /// `perceptual` uses when given no `model` (see the module documentation).
+    pub fn shipped() -> Result<Self, String> {
+        Self::from_json(SHIPPED_MODEL_JSON).map_err(|e| format!("the shipped default model: {e}"))
+    }
+
+    /// The mean of `models`, cell by cell: models of the same ladder, grids, metric, display
+    /// and stimuli measured on different scenes (or views) become one that holds across
+    /// them. Its `scene` lists theirs, joined by `+`. Refused, saying what differs, when
+    /// they do not share all of these, or when there is no model.
+    pub fn mean(models: &[MotionModel]) -> Result<Self, String> {
+        let (first, rest) = models.split_first().ok_or("no model to take the mean of")?;
+        first
+            .validate()
+            .map_err(|e| format!("model 0 ({}): {e}", first.scene))?;
+        for (i, m) in rest.iter().enumerate() {
+            let why = |e: String| format!("model {} ({}): {e}", i + 1, m.scene);
+            m.validate().map_err(why)?;
+            first.same_grids(m).map_err(why)?;
+        }
+        let n = models.len() as f64;
+        let mut mean = first.clone();
+        for (i, row) in mean.scores.iter_mut().enumerate() {
+            for (j, cells) in row.iter_mut().enumerate() {
+                for (k, cell) in cells.iter_mut().enumerate() {
+                    *cell = models.iter().map(|m| m.scores[i][j][k]).sum::<f64>() / n;
+                }
+            }
+        }
+        let scenes: Vec<&str> = models.iter().map(|m| m.scene.as_str()).collect();
+        mean.scene = scenes.join("+");
+        Ok(mean)
+    }
+
+    /// Whether `other` scores the same cells as this model: the same metric, ladder points
+    /// (their settings), speeds, frame times, display, image size, stimulus length and
+    /// warping; else what differs.
+    fn same_grids(&self, other: &MotionModel) -> Result<(), String> {
+        let differs = |what: &str, a: String, b: String| {
+            Err(format!("its {what} ({b}) differs from model 0's ({a})"))
+        };
+        if self.metric != other.metric {
+            return differs("metric", self.metric.to_string(), other.metric.to_string());
+        }
+        if self.ladder.qualities() != other.ladder.qualities() {
+            let show = |m: &MotionModel| {
+                let q: Vec<String> = m.ladder.qualities().iter().map(|q| q.to_string()).collect();
+                q.join(", ")
+            };
+            return differs("ladder points", show(self), show(other));
+        }
+        let grids = [
+            ("speeds", &self.speeds_deg_s, &other.speeds_deg_s),
+            ("frame times", &self.frame_times_ms, &other.frame_times_ms),
+        ];
+        for (what, a, b) in grids {
+            if a != b {
+                return differs(what, format!("{a:?}"), format!("{b:?}"));
+            }
+        }
+        let settings = [
+            ("refresh rate", self.refresh_hz, other.refresh_hz),
+            ("stimulus length", self.stimulus_s, other.stimulus_s),
+        ];
+        for (what, a, b) in settings {
+            if a != b {
+                return differs(what, a.to_string(), b.to_string());
+            }
+        }
+        if self.resolution != other.resolution {
+            return differs(
+                "resolution",
+                format!("{:?}", self.resolution),
+                format!("{:?}", other.resolution),
+            );
+        }
+        if self.warped != other.warped {
+            return differs("warping", self.warped.to_string(), other.warped.to_string());
+        }
+        Ok(())
     }
 
     /// The score at grid speed `i`, frame time `j` and ladder position `u` (linear between
@@ -308,5 +403,51 @@ mod tests {
         bad.speeds_deg_s[0] = f64::NAN;
         assert!(bad.validate().unwrap_err().contains("speeds_deg_s[0]"));
         assert!(MotionModel::from_json(r#"{"metric": "psnr"}"#).is_err());
+    }
+
+    #[test]
+    fn the_mean_averages_cells_and_refuses_models_of_other_grids() {
+        let a = model();
+        let mut b = model();
+        b.scene = "other".into();
+        b.scores[1][1] = vec![5.0, 7.0];
+        let mean = MotionModel::mean(&[a.clone(), b.clone()]).unwrap();
+        assert_eq!(mean.scene, "test+other");
+        assert_eq!(mean.scores[1][1], vec![4.0, 6.0]);
+        assert_eq!(mean.scores[0], a.scores[0]);
+        assert_eq!(MotionModel::mean(std::slice::from_ref(&a)).unwrap(), a);
+        assert!(MotionModel::mean(&[]).unwrap_err().contains("no model"));
+        let refused = |other: MotionModel, what: &str| {
+            let err = MotionModel::mean(&[a.clone(), other]).unwrap_err();
+            assert!(err.contains(what) && err.contains("model 1"), "{err}");
+        };
+        let mut speeds = b.clone();
+        speeds.speeds_deg_s = vec![0.0, 30.0];
+        refused(speeds, "speeds");
+        let mut times = b.clone();
+        times.frame_times_ms = vec![16.0, 48.0];
+        refused(times, "frame times");
+        let mut ladder = b.clone();
+        ladder.ladder.points[1].spp = 2.0;
+        refused(ladder, "ladder points");
+        let mut metric = b.clone();
+        metric.metric = Metric::DisplayedFlip;
+        refused(metric, "metric");
+        let mut refresh = b.clone();
+        refresh.refresh_hz = 120.0;
+        refused(refresh, "refresh rate");
+        let mut warped = b.clone();
+        warped.warped = true;
+        refused(warped, "warping");
+        let mut bad = b;
+        bad.scores[0][0].pop();
+        refused(bad, "scores must be");
+    }
+
+    #[test]
+    fn the_shipped_model_is_valid() {
+        let shipped = MotionModel::shipped().unwrap();
+        assert!(shipped.frame_times_ms.len() >= 2 && shipped.speeds_deg_s.len() >= 2);
+        assert!(shipped.spread() > 0.0);
     }
 }

@@ -36,7 +36,8 @@ pub const CONTROLLERS: &[(&str, &str)] = &[
     ),
     (
         "perceptual",
-        "predictive, with the frame time that looks best at the measured speed",
+        "predictive, with the frame time that looks best at the measured speed (by a \
+         shipped quality model unless given one)",
     ),
 ];
 
@@ -204,8 +205,8 @@ pub const OPTIONS: &[OptionInfo] = &[
     opt(
         "perceptual",
         "model",
-        "required",
-        "the quality model file (motion.json of calibrate --motion)",
+        "the shipped one",
+        "a quality model file (motion.json of calibrate --motion), e.g. the scene's own",
     ),
     opt(
         "perceptual",

@@ -38,7 +38,13 @@
 //! choice sits on top of the one cost model, and `predictive` keeps the chosen time exactly
 //! as it keeps any band.
 //!
-//! Options: `model`=PATH (a `motion.json` from `calibrate --motion`, required),
+//! Out of the box (no `model`) it uses the model that ships with the crate,
+//! [`MotionModel::shipped`]: one generic ladder and the mean of models calibrated on scenes
+//! other than the scene suite's (`docs/default-motion-model.md`). A model calibrated on the
+//! scene itself (`calibrate`, then `calibrate --motion`) may choose better; the suite
+//! measures how much (`perceptual` against `perceptual-scene`, `docs/scene-suite.md`).
+//!
+//! Options: `model`=PATH (a `motion.json` from `calibrate --motion`; default the shipped one),
 //! `hold_ms`=500, `margin`=0.02, `fall_ms`=300, `hand_over`=1 (ms), `warp`=0 (ms), `slack`=0.05,
 //! `width`=0.2, and every option of
 //! `predictive` but `ladder` (the ladder is the model's).
@@ -57,7 +63,8 @@ use steadyray_display::{BandShape, DisplayConfig, SyncMode, shaped_band};
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct PerceptualParams {
-    /// `model`: the quality model (a `motion.json`). Required.
+    /// `model`: the quality model (a `motion.json`). Default (`None`): the shipped one,
+    /// [`MotionModel::shipped`].
     pub model: Option<MotionModel>,
     /// `hold_ms`: display time (ms, each frame counted at its target time) between two
     /// changes of the target. Default 500.
@@ -101,7 +108,7 @@ impl Default for PerceptualParams {
 }
 
 impl PerceptualParams {
-    /// The defaults with the quality model `model` (the one option without a default).
+    /// The defaults with the quality model `model` instead of the shipped one.
     pub fn with_model(model: MotionModel) -> Self {
         Self {
             model: Some(model),
@@ -133,7 +140,9 @@ impl PerceptualParams {
                 return Err(ConfigError::BadOption {
                     key: key.to_string(),
                     value: value.to_string(),
-                    why: "perceptual moves along its model's ladder; give model=PATH".into(),
+                    why: "perceptual moves along its model's ladder; give model=PATH for \
+                          another one"
+                        .into(),
                 });
             }
             _ => {
@@ -225,16 +234,17 @@ impl Shaping {
 }
 
 impl Perceptual {
-    /// A perceptual controller; errors on a bad setup, a missing model, or a frame time too
-    /// short to leave a band after the hand-over and warps.
+    /// A perceptual controller (with the shipped model when `params` has none); errors on a
+    /// bad setup or a frame time too short to leave a band after the hand-over and warps.
     pub fn new(setup: Setup, params: PerceptualParams) -> Result<Self, ConfigError> {
-        let model = params.model.ok_or_else(|| ConfigError::BadOption {
-            key: "model".into(),
-            value: String::new(),
-            why: "perceptual needs a quality model: model=PATH to a motion.json written by \
-                  `steadyray calibrate --motion`"
-                .into(),
-        })?;
+        let model = match params.model {
+            Some(model) => model,
+            None => MotionModel::shipped().map_err(|why| ConfigError::BadOption {
+                key: "model".into(),
+                value: String::new(),
+                why,
+            })?,
+        };
         let display = DisplayConfig::new(model.refresh_hz, SyncMode::Vsync).map_err(|e| {
             ConfigError::BadOption {
                 key: "model".into(),

@@ -6,8 +6,8 @@ mod common;
 use common::{FAST, FRAME_TIMES, model, model_file};
 use steadyray_control::simulate::{Load, LoadProfile, RendererModel, SimRenderer};
 use steadyray_control::{
-    Band, Bounds, Controller, DisplayCosts, Perceptual, PerceptualParams, Quality, ReportError,
-    Setup,
+    Band, Bounds, Controller, DisplayCosts, MotionModel, Perceptual, PerceptualParams, Quality,
+    ReportError, Setup,
 };
 
 fn controller() -> Perceptual {
@@ -19,11 +19,16 @@ fn controller() -> Perceptual {
 
 /// A constant view at 640x360: S = 1 takes about 5 ms, S = 12 about 50 ms.
 fn renderer(speeds: Vec<f64>) -> SimRenderer {
+    renderer_at(speeds, 3.0)
+}
+
+/// [`renderer`]'s view at `ns_per_ray` nanoseconds a ray.
+fn renderer_at(speeds: Vec<f64>, ns_per_ray: f64) -> SimRenderer {
     let load = Load::geometric(0.5, 0.8, 1.0, 1.0);
     let mut model = RendererModel::corridor(1)
         .with_profile(LoadProfile::Constant(load))
         .with_speeds(speeds);
-    model.ns_per_ray = 3.0;
+    model.ns_per_ray = ns_per_ray;
     model.timer_ms = 0.0;
     SimRenderer::new(model)
 }
@@ -36,7 +41,10 @@ struct Step {
 }
 
 fn run(c: &mut Perceptual, speeds: &[f64]) -> Vec<Step> {
-    let mut r = renderer(speeds.to_vec());
+    run_on(c, speeds, renderer(speeds.to_vec()))
+}
+
+fn run_on(c: &mut Perceptual, speeds: &[f64], mut r: SimRenderer) -> Vec<Step> {
     (0..speeds.len())
         .map(|i| {
             let q = c.quality();
@@ -144,6 +152,42 @@ fn the_target_follows_the_speed_profile_and_holds_each_change() {
     assert!(jittery <= 1, "{changes:?}");
 }
 
+/// Out of the box (the shipped model, no options), on a view where the ladder's top does not
+/// fit one refresh (S = 1 at full scale about 25 ms): a still picture gets the longest frame
+/// time and the best picture it affords; a fast turn the shortest frame time within a few
+/// frames, and back to the longest once still again. (Where the top fits one refresh, every
+/// frame time shows the same picture when still, and it keeps the one it has.)
+#[test]
+fn the_shipped_model_gives_long_frames_when_still_and_short_ones_in_fast_motion() {
+    let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+    let mut c = Perceptual::new(setup, PerceptualParams::default()).unwrap();
+    let times = c.model().frame_times_ms.clone();
+    let (shortest, longest) = (times[0], times[times.len() - 1]);
+    let fastest = *c.model().speeds_deg_s.last().unwrap();
+    let mut speeds = vec![0.0; 120];
+    speeds.extend(std::iter::repeat_n(fastest, 120));
+    speeds.extend(std::iter::repeat_n(0.0, 240));
+    let steps = run_on(&mut c, &speeds, renderer_at(speeds.clone(), 15.0));
+    let still = &steps[60..120];
+    assert!(
+        still.iter().all(|s| s.target_ms == longest),
+        "{:?}",
+        switches(&steps)
+    );
+    let moved = (120..240)
+        .find(|&i| steps[i].target_ms == shortest)
+        .expect("fast motion never got the shortest frame time");
+    assert!(
+        moved - 120 <= 3,
+        "moved {} frames after the turn",
+        moved - 120
+    );
+    assert!(steps[moved..240].iter().all(|s| s.target_ms == shortest));
+    assert!(steps[400..].iter().all(|s| s.target_ms == longest));
+    let (q_still, q_fast) = (steps[119].quality, steps[239].quality);
+    assert!(q_fast.level() < q_still.level(), "{q_fast} vs {q_still}");
+}
+
 #[test]
 fn a_bad_speed_is_refused_and_changes_nothing() {
     let mut c = controller();
@@ -166,11 +210,14 @@ fn a_bad_speed_is_refused_and_changes_nothing() {
 #[test]
 fn options_are_checked() {
     let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
-    let needs_model = steadyray_control::from_name("perceptual", setup, "").unwrap_err();
-    assert!(
-        needs_model.to_string().contains("calibrate --motion"),
-        "{needs_model}"
-    );
+    // No options: the shipped model.
+    let shipped = steadyray_control::from_name("perceptual", setup, "").unwrap();
+    let longest = MotionModel::shipped()
+        .unwrap()
+        .frame_times_ms
+        .last()
+        .copied();
+    assert_eq!(shipped.target_frame_ms(), longest);
     let mut p = PerceptualParams::default();
     assert!(
         p.set("ladder", "x.json")

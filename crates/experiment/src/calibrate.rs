@@ -59,6 +59,10 @@ pub struct CalibrateConfig {
     pub motion: bool,
     /// With --motion: the calibrated ladder whose points are scored.
     pub ladder: Option<PathBuf>,
+    /// With --motion: measure nothing, but write the mean of these motion.json files (models
+    /// of the same ladder and grids, e.g. on several scenes) to --out: how the model shipped
+    /// with `perceptual` is made (docs/default-motion-model.md).
+    pub merge: Vec<PathBuf>,
     /// With --motion: how many of the ladder's points to score, spread evenly by cost
     /// (0: all).
     pub points: usize,
@@ -268,6 +272,9 @@ pub fn calibrate(
 /// Runs the calibration, prints the front and writes the ladder (or, with `--motion`, the
 /// quality model).
 pub fn run(args: &CalibrateConfig) -> Result<()> {
+    if !args.merge.is_empty() {
+        return run_merge(args);
+    }
     let scene = args.scene.load()?;
     let mut renderer = create_renderer(args.scene.backend)?;
     renderer.load_scene(&scene)?;
@@ -381,6 +388,36 @@ fn run_motion(args: &CalibrateConfig, renderer: &mut dyn Renderer, scene: &Scene
         tables.model.speeds_deg_s.len(),
         tables.model.frame_times_ms.len(),
         tables.model.ladder.points.len(),
+        out.display()
+    );
+    Ok(())
+}
+
+/// `calibrate --motion --merge A.json,B.json`: writes the mean of the models.
+fn run_merge(args: &CalibrateConfig) -> Result<()> {
+    if !args.motion {
+        bail!("--merge averages motion models: give --motion too");
+    }
+    let models = args
+        .merge
+        .iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read {}", path.display()))?;
+            MotionModel::from_json(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let mean = MotionModel::mean(&models).map_err(|e| {
+        let names: Vec<String> = args.merge.iter().map(|p| p.display().to_string()).collect();
+        anyhow::anyhow!("cannot merge {} (in that order): {e}", names.join(", "))
+    })?;
+    let out = args.out.clone().unwrap_or_else(|| "motion.json".into());
+    print!("{}", motion_table(&mean));
+    write_json(&mean, &out)?;
+    eprintln!(
+        "calibrate: the mean of {} models ({}); wrote {}",
+        models.len(),
+        mean.scene,
         out.display()
     );
     Ok(())

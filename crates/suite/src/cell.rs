@@ -36,6 +36,6 @@ pub struct CellResult {
     /// Frames whose time fell in the method's band, %.
     pub in_band_pct: f64,
     /// Seconds the cell took, all of it (with the calibration of its scene's `perceptual`
-    /// model for the first cell that needed one).
+    /// model for the first `perceptual-scene` cell, which needs one).
     pub seconds: f64,
 }

@@ -2,8 +2,9 @@
 //!
 //! A [`Plan`] crosses the suite's scenes ([`scene::standard_scenes`]) with the methods that
 //! matter ([`method::standard_methods`]: the paper's band, one and two refreshes a frame,
-//! each with and without the temporal history and its warps, `perceptual`, the paper's fixed
-//! quality, the best-looking fixed quality) and K runs of each. Every combination is a [`Cell`]: an independent job whose
+//! each with and without the temporal history and its warps, `perceptual` out of the box and
+//! with the scene's calibrated model, the paper's fixed quality, the best-looking fixed
+//! quality) and K runs of each. Every combination is a [`Cell`]: an independent job whose
 //! results are kept in its own folder ([`store`]), so a killed run resumes where it stopped
 //! (finished cells are not redone) and [`Shard`]s split the cells over machines. [`table`]
 //! joins the cells' results into one table: each method's score per scene (median and range

@@ -149,8 +149,9 @@ impl BenchCells<'_> {
         Ok(())
     }
 
-    /// The scene's calibrated `perceptual` model, calibrated once and kept under
-    /// `models/<scene>/` (a ladder, then the motion model on its points).
+    /// The scene's calibrated `perceptual` model, for the methods that need one
+    /// (`perceptual-scene`; `perceptual` uses its shipped model): calibrated once and kept
+    /// under `models/<scene>/` (a ladder, then the motion model on its points).
     fn motion_model(&self, scene: &SuiteScene) -> Result<PathBuf> {
         let dir = self.config.out.join("models").join(&scene.name);
         let (ladder, model) = (dir.join("ladder.json"), dir.join("motion.json"));

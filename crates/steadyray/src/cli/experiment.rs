@@ -278,6 +278,11 @@ pub struct CalibrateArgs {
     /// With --motion: the calibrated ladder whose points are scored.
     #[arg(long, requires = "motion", value_name = "FILE")]
     pub ladder: Option<PathBuf>,
+    /// With --motion: measure nothing, but write the mean of these motion.json files (models
+    /// of the same ladder and grids, e.g. on several scenes; comma separated) to --out: how
+    /// the model shipped with `perceptual` is made (docs/default-motion-model.md).
+    #[arg(long, requires = "motion", value_delimiter = ',', value_name = "FILES")]
+    pub merge: Vec<PathBuf>,
     /// With --motion: how many of the ladder's points to score, spread evenly by cost
     /// (0: all).
     #[arg(long, requires = "motion", default_value_t = 5)]
@@ -354,6 +359,7 @@ impl From<&CalibrateArgs> for CalibrateConfig {
             out: args.out.clone(),
             motion: args.motion,
             ladder: args.ladder.clone(),
+            merge: args.merge.clone(),
             points: args.points,
             speeds: args.speeds.clone(),
             refreshes: args.refreshes.clone(),
