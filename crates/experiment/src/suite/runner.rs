@@ -33,6 +33,8 @@ pub struct SuiteConfig {
     pub common: Vec<String>,
     /// Seconds of display time each cell shows.
     pub duration_s: f64,
+    /// The displayed quality scores the screen at one refresh in this many (`--every`).
+    pub every: u32,
     /// The JOD tool, where it is installed: cells then write videos and are scored by JOD.
     pub jod: Option<JodTool>,
 }
@@ -104,8 +106,8 @@ impl BenchCells<'_> {
         read_result(cell, &dir.join("summary.json"))
     }
 
-    /// The suite's own bench flags: the real clock, the displayed quality at every second
-    /// refresh, the references shared by every cell (`<suite>/references`: each rendered
+    /// The suite's own bench flags: the real clock, the displayed quality at one refresh in
+    /// `every`, the references shared by every cell (`<suite>/references`: each rendered
     /// once), the cell's folder and, with the JOD tool, the videos.
     fn cell_flags(&self, dir: &Path) -> Vec<String> {
         let mut flags: Vec<String> = [
@@ -115,7 +117,7 @@ impl BenchCells<'_> {
             &self.config.duration_s.to_string(),
             "--quality",
             "--every",
-            "2",
+            &self.config.every.to_string(),
             "--references",
             &self.config.out.join("references").display().to_string(),
             "--out",

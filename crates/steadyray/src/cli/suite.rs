@@ -49,9 +49,14 @@ pub struct SuiteRunArgs {
     /// Only these methods (comma separated; default: all).
     #[arg(long, value_delimiter = ',')]
     pub methods: Vec<String>,
-    /// Seconds of display time each cell shows (short stimuli keep JOD affordable).
-    #[arg(long, default_value_t = 3.0)]
+    /// Seconds of display time each cell shows: the default is the whole `pans` path (holds,
+    /// slow pans and fast turns); a shorter span keeps JOD affordable but shows only the
+    /// path's start (3 s: a hold and a slow pan, no fast turn).
+    #[arg(long, default_value_t = 8.0)]
     pub duration: f64,
+    /// The displayed quality scores the screen at one refresh in this many.
+    #[arg(long, default_value_t = 2)]
+    pub every: u32,
     /// Score each cell's video by JOD with this Python (one with scripts/jod/requirements.txt
     /// installed); without it the table ranks by displayed FLIP.
     #[arg(long, value_name = "PYTHON")]
@@ -85,6 +90,9 @@ impl SuiteRunArgs {
                 self.duration
             );
         }
+        if self.every == 0 {
+            anyhow::bail!("--every must be at least 1");
+        }
         let plan = Plan::standard(self.runs)
             .context("--runs")?
             .only_scenes(&self.scenes)
@@ -97,6 +105,7 @@ impl SuiteRunArgs {
             out: self.out.clone(),
             common: self.bench.clone(),
             duration_s: self.duration,
+            every: self.every,
             jod: self.jod_python.as_ref().map(|python| JodTool {
                 python: python.clone(),
                 script: PathBuf::from("scripts/jod/jod.py"),
