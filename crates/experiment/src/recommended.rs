@@ -9,10 +9,12 @@ use steadyray_render_gpu::list_adapters;
 
 /// The band, temporal mode and warps measured best on one backend.
 ///
-/// Measured on one scene, the corridor (docs/results/viewer.md): on the CPU renderer a
-/// frame every two refreshes with the temporal history and the refresh between shown warped
-/// scored higher JOD than one refresh without them; on a GPU, where frames carry many
-/// samples, one refresh without the history looked as good.
+/// On the CPU renderer, decided on the scene suite (docs/results/scene-suite.md): a frame
+/// every two refreshes with the temporal history and the refresh between shown warped has
+/// the best mean rank of the suite's methods over its six scenes (by displayed FLIP; on the
+/// corridor it also scored the highest JOD, docs/results/viewer.md). On a GPU, where frames
+/// carry many samples, one refresh without the history looked as good on the corridor; the
+/// suite has not run on a GPU.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Recommended {
     /// The band: a frame every this many refreshes (`--band refresh:M`).

@@ -160,7 +160,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub repeat: u32,
     /// The display experiment in the recommended configuration of the backend used
-    /// (docs/results/viewer.md, measured on one scene, the corridor): `--clock real` with,
+    /// (the CPU's decided on the scene suite, docs/results/scene-suite.md; the GPU's on the
+    /// corridor, docs/results/viewer.md): `--clock real` with,
     /// on the CPU renderer, `--band refresh:2 --temporal on --warp`; on a GPU, `--band
     /// refresh --temporal off` (`--backend auto` counts as a GPU where a hardware adapter
     /// is present). `view` starts in the same configuration. With --simulate, which keeps no

@@ -52,7 +52,8 @@ pub struct ViewArgs {
     /// make every refresh of its monitor (`refresh:M`: every M-th; 60 Hz where the monitor
     /// does not say), with the hand-over measured over the first frames; the paper's
     /// [15, 20] ms holds until then. Without it or --tmin/--tmax, the backend's recommended
-    /// configuration (docs/results/viewer.md, measured on one scene, the corridor): on the
+    /// configuration (the CPU's decided on the scene suite, docs/results/scene-suite.md; the
+    /// GPU's on the corridor, docs/results/viewer.md): on the
     /// CPU renderer `--band refresh:2 --temporal on --warp`, on a GPU `--band refresh
     /// --temporal off` (`bench --display` runs the same).
     #[arg(long, value_name = "refresh[:M]")]
