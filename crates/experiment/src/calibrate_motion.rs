@@ -22,6 +22,7 @@
 
 use crate::bench::displayed::{TimedReferences, measure, screen_samples};
 use crate::bench::machine::git_revision;
+use crate::bench::reference_store::{StoreKey, digest};
 use crate::bench::screen::{DisplayRun, Warps};
 use crate::bench::source::{
     FrameSource, HandOver, Measured, PathPoint, read_picture, render_measured, set_history,
@@ -545,15 +546,18 @@ impl Stimulus {
             self.view, self.speed
         ));
         let reference_key = ReferenceKey {
-            scene: format!("{} (view {}, {} deg/s)", scene.name, self.view, self.speed),
-            backend: info.backend,
-            device: info.device,
-            resolution: [plan.width, plan.height],
+            set_up: StoreKey {
+                scene: format!("{} (view {}, {} deg/s)", scene.name, self.view, self.speed),
+                scene_digest: digest(&format!("{scene:?}")),
+                backend: info.backend,
+                device: info.device,
+                resolution: [plan.width, plan.height],
+                spp: plan.reference.spp,
+                depth: plan.reference.depth,
+                git_revision: git_revision(),
+            },
             refresh_hz: plan.refresh_hz,
             refreshes: count,
-            spp: plan.reference.spp,
-            depth: plan.reference.depth,
-            git_revision: git_revision(),
         };
         let mut references = TimedReferences::new(plan.reference);
         match folder {

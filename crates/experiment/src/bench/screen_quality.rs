@@ -107,7 +107,6 @@ pub fn measure_screens(
         measured,
         size: described.resolution,
     };
-    let reference_quality = references.quality();
     if let Some(dir) = &config.video {
         let needed = scoring.needed_times(runs);
         let needed_keys: BTreeSet<i64> = needed.iter().map(|&t| time_key(t)).collect();
@@ -116,15 +115,9 @@ pub fn measure_screens(
         progress.set_message("references");
         let (width, height) = described.resolution;
         let key = video::ReferenceKey {
-            scene: described.scene.clone(),
-            backend: described.backend.clone(),
-            device: described.device.clone(),
-            resolution: [width, height],
+            set_up: store_key(described, references.quality(), source),
             refresh_hz: real.display.refresh_hz,
             refreshes,
-            spp: reference_quality.spp,
-            depth: reference_quality.depth,
-            git_revision: machine::git_revision(),
         };
         video::write_references(
             dir,

@@ -19,6 +19,7 @@
 
 use super::displayed::{TimedReferences, screen_picture, screen_samples};
 use super::record::safe_name;
+use super::reference_store::StoreKey;
 use super::screen::{DisplayRun, ScreenSample};
 use super::source::FrameSource;
 use anyhow::{Context, Result, bail};
@@ -279,27 +280,18 @@ pub fn remove_run(dir: &Path, folder: &str) -> Result<()> {
     std::fs::remove_dir_all(&path).with_context(|| format!("cannot remove {}", path.display()))
 }
 
-/// What a reference folder holds: a later bench reuses it when all of this matches.
+/// What a reference folder holds: a later bench reuses it when all of this matches. The
+/// set-up is the one a reference store is keyed by ([`StoreKey`], written flat into
+/// `reference.json`); a video adds its rate and length.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceKey {
-    /// The scene's name.
-    pub scene: String,
-    /// The backend.
-    pub backend: String,
-    /// The device.
-    pub device: String,
-    /// Full-scale image size.
-    pub resolution: [u32; 2],
+    /// What the references are of: scene, renderer, size, reference quality, revision.
+    #[serde(flatten)]
+    pub set_up: StoreKey,
     /// The refresh rate, Hz.
     pub refresh_hz: f64,
     /// Refreshes in the video.
     pub refreshes: usize,
-    /// The reference's eye rays per pixel S.
-    pub spp: f32,
-    /// The reference's depth R.
-    pub depth: u32,
-    /// The source revision that rendered it.
-    pub git_revision: String,
 }
 
 /// The shared reference at every refresh `times_s` (one per refresh, in order), in
@@ -320,7 +312,7 @@ pub fn write_references(
     let cached = std::fs::read_to_string(&meta)
         .ok()
         .and_then(|text| serde_json::from_str::<ReferenceKey>(&text).ok())
-        .is_some_and(|k| &k == key && !key.git_revision.ends_with("-dirty"));
+        .is_some_and(|k| &k == key && !key.set_up.git_revision.ends_with("-dirty"));
     if cached {
         for (i, &t) in times_s.iter().enumerate() {
             if wanted(t) {
