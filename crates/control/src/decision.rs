@@ -29,9 +29,6 @@ pub enum Reason {
     SetAside,
     /// The next frame's predicted time lies inside the inner band.
     InInnerBand,
-    /// One slow frame alone (it may be a spike): cut only as far as keeps the next frame in
-    /// the band should it have been one.
-    OneSlowFrame,
     /// Several frames in a row measured above the inner band: a drift the cost model lags.
     Drift,
     /// The predicted time lies above the inner band.
@@ -42,14 +39,38 @@ pub enum Reason {
     NewBand,
 }
 
+impl Action {
+    /// Its name in logs and files (as serialized): `hold`, `cut`, `raise`, `trade`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Action::Hold => "hold",
+            Action::Cut => "cut",
+            Action::Raise => "raise",
+            Action::Trade => "trade",
+        }
+    }
+}
+
 impl Reason {
+    /// Its name in logs and files (as serialized), e.g. `in_inner_band`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Reason::Learning => "learning",
+            Reason::SetAside => "set_aside",
+            Reason::InInnerBand => "in_inner_band",
+            Reason::Drift => "drift",
+            Reason::OverInnerBand => "over_inner_band",
+            Reason::UnderInnerBand => "under_inner_band",
+            Reason::NewBand => "new_band",
+        }
+    }
+
     /// A few words for a HUD or a log.
     pub fn describe(self) -> &'static str {
         match self {
             Reason::Learning => "learning the cost model",
-            Reason::SetAside => "frame set aside (hitch or first slow frame)",
+            Reason::SetAside => "frame set aside (a spike, or the first of a change)",
             Reason::InInnerBand => "prediction inside the inner band",
-            Reason::OneSlowFrame => "one slow frame: cut as far as a spike allows",
             Reason::Drift => "frames in a row above the inner band",
             Reason::OverInnerBand => "prediction above the inner band",
             Reason::UnderInnerBand => "prediction under the inner band",
@@ -100,13 +121,7 @@ impl Decision {
 
 impl fmt::Display for Decision {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let action = match self.action {
-            Action::Hold => "hold",
-            Action::Cut => "cut",
-            Action::Raise => "raise",
-            Action::Trade => "trade",
-        };
-        write!(f, "{action}")?;
+        write!(f, "{}", self.action.name())?;
         let moved: Vec<&str> = self.knobs_moved().iter().map(|k| k.name()).collect();
         if !moved.is_empty() {
             write!(f, " {}", moved.join("+"))?;
@@ -123,5 +138,36 @@ impl fmt::Display for Decision {
             ", aiming at {:.2} ms in [{:.2}, {:.2}]",
             self.target_ms, self.inner_ms[0], self.inner_ms[1]
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The names written to files are the serialized names, so a reader of `frames.csv` and
+    /// of a JSON log sees one vocabulary.
+    #[test]
+    fn names_are_the_serialized_names() {
+        for a in [Action::Hold, Action::Cut, Action::Raise, Action::Trade] {
+            assert_eq!(
+                serde_json::to_string(&a).unwrap(),
+                format!("\"{}\"", a.name())
+            );
+        }
+        for r in [
+            Reason::Learning,
+            Reason::SetAside,
+            Reason::InInnerBand,
+            Reason::Drift,
+            Reason::OverInnerBand,
+            Reason::UnderInnerBand,
+            Reason::NewBand,
+        ] {
+            assert_eq!(
+                serde_json::to_string(&r).unwrap(),
+                format!("\"{}\"", r.name())
+            );
+        }
     }
 }

@@ -39,12 +39,12 @@
 //!   `order`=depth,scale,spp.
 //! - `predictive` ([`Predictive`]): fits Tp ≈ fixed_ms + ms_per_ray · rays online
 //!   ([`cost_model`]: exponential forgetting `forgetting`=0.95, outliers beyond
-//!   `outlier_k`=4 robust deviations set aside, `confirm`=2 outliers on one side confirm a
-//!   real cost change; one outlier over Tmax cuts no lower than the unsurprised target, as a
-//!   spike would need), predicts each candidate's rays from the last frame's rays per depth
-//!   ([`ray_model`]), extrapolates the load's trend (`trend`=0.5), and keeps the quality while
-//!   the prediction lies inside the inner band (`deadband`=0.2 of the band from each side,
-//!   narrowed so that 2 measured noise deviations stay inside the band);
+//!   `outlier_k`=4 robust deviations set aside, spikes over Tmax included, `confirm`=2
+//!   outliers on one side confirm a real cost change), predicts each candidate's rays from
+//!   the last frame's rays per depth ([`ray_model`]), extrapolates the load's trend
+//!   (`trend`=0.5), and keeps the quality while the prediction lies inside the inner band
+//!   (`deadband`=0.2 of the band from each side until the noise is measured, then 0.12 of
+//!   the band on each side of a target placed by the measured noise);
 //!   otherwise it takes the highest quality predicted to fit the target (`target`=0.5),
 //!   raising at most `max_raise`=2× the rays per change. Raising order (`order`): R while
 //!   at least `min_reach`=2 % of eye rays reach the deeper level (all of R when the deeper

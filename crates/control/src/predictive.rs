@@ -3,17 +3,14 @@
 //!
 //! Each frame:
 //! 1. The [`CostModel`] (Tp ≈ fixed_ms + ms_per_ray · rays, fitted online, robust to
-//!    spikes) takes the frame. A frame it sets aside as an outlier is not fitted: a frame
-//!    that took [`HITCH_RATIO`] times its prediction or more is a hitch and changes nothing;
-//!    a slower-than-predicted frame over Tmax short of that is an overload, cut at once in
-//!    proportion to the evidence of one frame: no lower than the target without the
-//!    surprise, so that the next frame lands in the band should it have been a spike (on a
-//!    real machine one slow frame is far more often a spike than a change of cost), a cut
-//!    that keeps R (vanished reflections are the most visible cut and the slowest to come
-//!    back), or none when under that scaling not even the lowest such quality would fit (no
-//!    cut can help); a second outlier on the same side
-//!    confirms a real change of cost and the model refits at once, as do three fitted frames
-//!    in a row well off their prediction on one side (a cost drifting a little each frame).
+//!    spikes) takes the frame. A frame it sets aside as an outlier changes nothing,
+//!    over Tmax or not: on a real machine one slow frame is far more often a spike than a
+//!    change of cost (the 2-core VM, idle: about one frame in twenty runs 1.1 to 1.4 times
+//!    its neighbours' time, alone), and a cut on its word landed the next frames under the
+//!    band and made a reversal with the raise after it. `confirm` outliers in a row on one
+//!    side (default 2) confirm a real change of cost and the model refits at once, as do
+//!    three fitted frames in a row well off their prediction on one side (a cost drifting a
+//!    little each frame).
 //! 2. The [`RayModel`] of the frame gives the rays any candidate quality would trace. The
 //!    load's trend (the camera moves smoothly) is extrapolated one frame ahead: an
 //!    exponential average of the frame-to-frame growth of the load, weight `trend`, each
@@ -25,9 +22,11 @@
 //!    a deep one; raises and cuts never trade). This is what keeps it still in steady state:
 //!    the prediction uses the measured rays, which carry no timer noise. The inner band starts as
 //!    [Tmin + `deadband`·w, Tmax − `deadband`·w] (w = Tmax − Tmin) around the target
-//!    Tmin + `target`·w; once the recent prediction errors are known, target and inner band
-//!    follow them ([`Predictive::aim`]): on a machine whose noise only ever slows frames
-//!    down it aims below the centre, as far as that noise asks and no further.
+//!    Tmin + `target`·w; once the recent prediction errors are known, the target follows
+//!    them and the inner band narrows to [`INNER_HALF`] of the band on each side of it
+//!    ([`Predictive::aim`]): on a machine whose noise only ever slows frames down it aims
+//!    below the centre, as far as that noise asks and no further, and holds the planned
+//!    time close to that aim.
 //! 4. Otherwise it takes the highest quality whose predicted time is at most the target,
 //!    raising at most `max_raise` times the current rays per change
 //!    (cuts are not limited). Quality order (`order`, default `depth,scale,spp`): R first,
@@ -55,10 +54,6 @@ use crate::report::{FrameReport, ReportError};
 
 /// The largest frame-to-frame load growth the trend extrapolates (±10 %).
 const MAX_GROWTH: f64 = 1.1;
-/// A frame over Tmax that the cost model sets aside is a hitch (ignored) when it took this
-/// many times its prediction, and an overload to cut at once (predictions scaled by its
-/// surprise) when it took less.
-pub const HITCH_RATIO: f64 = 3.0;
 /// Frames in a row measured above the inner band that `measured_cut` takes for a drift
 /// (fewer are too often noise, or a coarse timer's rounding).
 pub const DRIFT_FRAMES: u32 = 3;
@@ -71,11 +66,16 @@ pub const DRIFT_CHANCE: f64 = 1e-3;
 pub const MIN_NOISE_FRAMES: usize = 8;
 /// Planned times scored across the band by [`Predictive::aim`].
 const AIM_GRID: u32 = 50;
-/// The inner band keeps times that score within this fraction of the best.
-pub const KEEP_SLACK: f64 = 0.05;
-/// The inner band never narrows to less than this fraction of the band on either side of
-/// the target.
-pub const MIN_INNER: f64 = 0.12;
+/// Once the noise is measured, the inner band spans this fraction of the band on either side
+/// of the target. Frames planned anywhere in a wider inner band met the noise far from the
+/// aim: on the 2-core VM the old inner band (the times scoring within 5 % of the best,
+/// 16 to 19 ms in [15, 20]) let a tenth of the frames be planned above 18.2 ms, where a
+/// spike of 1.1 already ends over the band. Narrower, the quality moves more often with the
+/// view, and reversals grow.
+pub const INNER_HALF: f64 = 0.12;
+/// On a noisy machine the inner band is at least this many robust standard deviations of
+/// the prediction errors on either side of the target ([`Predictive::aim`]).
+pub const NOISE_HALF: f64 = 2.0;
 /// Continuous knobs are found to this relative precision.
 const SEARCH_STEPS: u32 = 40;
 /// A trade ([`PredictiveParams::trades`]) counts S and scale as unchanged within this fraction.
@@ -208,13 +208,9 @@ pub struct Predictive {
     load: Option<RayModel>,
     /// Exponential average of ln(load growth per frame).
     trend: f64,
-    /// How much slower than predicted the last frame ran, when the cost model set it aside
-    /// as an overload (1 otherwise): scales the predictions of the decision it triggers.
+    /// How much slower than predicted the last frame ran, when it completed a drift (1
+    /// otherwise): scales the predictions of the decision it triggers.
     surprise: f64,
-    /// Whether that surprise rests on one frame alone (an unconfirmed overload): the cut
-    /// then goes only as far as keeps the next frame in the band should the frame have
-    /// been a spike ([`Predictive::cut_target_ms`]).
-    one_frame: bool,
     /// Frames in a row measured above the inner band at the current quality.
     above_run: u32,
     /// Where on the ladder the current quality lies (see [`Predictive::ladder_quality`]);
@@ -245,7 +241,6 @@ impl Predictive {
             load: None,
             trend: 0.0,
             surprise: 1.0,
-            one_frame: false,
             above_run: 0,
             ladder_pos: None,
             decision: None,
@@ -293,12 +288,13 @@ impl Predictive {
     /// Until [`MIN_NOISE_FRAMES`] frames have measured the noise, the target is `target` and
     /// the inner band `deadband` in from each side of the band. Then each planned time t on a
     /// grid over the band is scored by how many recent relative prediction errors r keep
-    /// t·(1 + r) inside the band: the target is the middle of the best-scoring times, and the
-    /// inner band spans the times scoring within [`KEEP_SLACK`] of the best, or within the
-    /// counting error of the best score where that is larger (inside the
-    /// deadband's limits, and never narrower than [`MIN_INNER`] of the band around the target).
-    /// Real frame-time noise is one-sided (other work only makes frames slower), so this aims
-    /// below the centre exactly as far as the noise asks.
+    /// t·(1 + r) inside the band, averaged over the times within [`INNER_HALF`] of the band
+    /// of t (a quality is held while its prediction wanders that far from where it was
+    /// planned, so a time next to a cliff of the count, where the errors that make frames
+    /// fast drop them under Tmin, is not as good as it looks alone). The target is the
+    /// middle of the best-scoring times, and the inner band [`INNER_HALF`] of the band on
+    /// each side of it. Real frame-time noise is one-sided (other work only makes frames
+    /// slower), so this aims below the centre exactly as far as the noise asks.
     pub fn aim(&self) -> Aim {
         self.aim_in(self.setup.band)
     }
@@ -315,40 +311,51 @@ impl Predictive {
         if errors.len() < MIN_NOISE_FRAMES {
             return nominal;
         }
-        let times: Vec<f64> = (0..=AIM_GRID)
-            .map(|i| band.at(f64::from(i) / f64::from(AIM_GRID)))
-            .collect();
-        let scores: Vec<usize> = times
-            .iter()
-            .map(|&t| {
-                errors
-                    .iter()
-                    .filter(|&&r| band.contains(t * (1.0 + r)))
-                    .count()
-            })
-            .collect();
-        let best = scores.iter().copied().max().unwrap_or(0);
-        // Scores within the counting error of the best (one binomial standard deviation) are
-        // as good as the best: on a noisy machine the score curve is flat and a few dozen
-        // errors cannot tell its points apart, and an inner band cut to the best few points
-        // moved the quality back and forth on noise.
-        let n = errors.len() as f64;
-        let counting = (best as f64 * (n - best as f64) / n).max(0.0).sqrt().ceil();
-        let keep = best.saturating_sub((KEEP_SLACK * best as f64).floor().max(counting) as usize);
-        let span = |at_least: usize| {
-            let first = scores.iter().position(|&s| s >= at_least).unwrap_or(0);
-            let last = scores.iter().rposition(|&s| s >= at_least).unwrap_or(0);
-            (times[first], times[last])
+        let step = |i: i32| band.at(f64::from(i) / f64::from(AIM_GRID));
+        let count_at = |i: i32| {
+            let t = step(i);
+            errors
+                .iter()
+                .filter(|&&r| band.contains(t * (1.0 + r)))
+                .count() as f64
         };
-        let (best_low, best_high) = span(best);
-        let (keep_low, keep_high) = span(keep);
-        let target_ms = 0.5 * (best_low + best_high);
-        let half = MIN_INNER * band.width_ms();
+        let half = self.inner_half_ms(band, &errors);
+        let reach = (half / band.width_ms() * f64::from(AIM_GRID)).round() as i32;
+        let grid = AIM_GRID as i32;
+        let counts: Vec<f64> = (-reach..=grid + reach).map(count_at).collect();
+        let window = counts.len() - grid as usize;
+        let scores: Vec<f64> = counts
+            .windows(window)
+            .map(|w| w.iter().sum::<f64>() / window as f64)
+            .collect();
+        let best = scores.iter().copied().fold(0.0, f64::max);
+        let first = scores.iter().position(|&s| s >= best).unwrap_or(0);
+        let last = scores.iter().rposition(|&s| s >= best).unwrap_or(0);
+        let target_ms = 0.5 * (step(first as i32) + step(last as i32));
         Aim {
             target_ms,
-            low_ms: keep_low.max(nominal.low_ms).min(target_ms - half),
-            high_ms: keep_high.min(nominal.high_ms).max(target_ms + half),
+            low_ms: target_ms - half,
+            high_ms: target_ms + half,
         }
+    }
+
+    /// Half the inner band's width once the noise is measured, ms: [`NOISE_HALF`] robust
+    /// standard deviations of the prediction errors (spikes aside) at the band's centre,
+    /// at least [`INNER_HALF`] of the band and at most the nominal inner band's half. On a
+    /// quiet machine the quality is held close to its aim; on a noisy one a band that
+    /// narrow moved the quality on the noise (the shared 2-core VM's recording: 9.6
+    /// reversals per 100 frames on a steady view).
+    fn inner_half_ms(&self, band: Band, errors: &[f64]) -> f64 {
+        let mut sorted = errors.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let median = sorted[sorted.len() / 2];
+        let mut deviations: Vec<f64> = sorted.iter().map(|r| (r - median).abs()).collect();
+        deviations.sort_by(f64::total_cmp);
+        let sigma = 1.4826 * deviations[deviations.len() / 2];
+        let nominal = (0.5 - self.params.deadband) * band.width_ms();
+        (NOISE_HALF * sigma * band.centre_ms())
+            .min(nominal)
+            .max(INNER_HALF * band.width_ms())
     }
 
     /// The next quality (and its ladder position when it moved along a ladder): unchanged
@@ -377,18 +384,12 @@ impl Predictive {
         }
         let reason = if raising {
             Reason::UnderInnerBand
-        } else if self.surprise > 1.0 && self.one_frame {
-            Reason::OneSlowFrame
         } else if self.surprise > 1.0 {
             Reason::Drift
         } else {
             Reason::OverInnerBand
         };
-        let target = if raising {
-            aim.target_ms
-        } else {
-            self.cut_target_ms(&aim)
-        };
+        let target = aim.target_ms;
         let ray_cap = if raising {
             p.max_raise * load.rays(&self.quality)
         } else {
@@ -458,23 +459,6 @@ impl Predictive {
             from,
             to,
         });
-    }
-
-    /// The time a cut aims for (predictions scaled by the surprise). Normally the target. On
-    /// one unconfirmed overload the target times the surprise: the cut goes no lower than the
-    /// target without it, so the next frame lands at the target should the slow frame have
-    /// been a spike, and the quality stays where the unsurprised prediction still fits. One
-    /// slow frame on a real machine's noise is far more often a spike than a change of cost:
-    /// a full cut on its word landed the next frame under the band (17.5 ms planned under a
-    /// surprise of 1.4 is 12.5 ms), and the raise after it was a reversal. A lasting slowness
-    /// is confirmed by the next frame (the cost model refits at its second outlier, or three
-    /// frames above the inner band make a drift) and cut in full then.
-    fn cut_target_ms(&self, aim: &Aim) -> f64 {
-        if self.one_frame {
-            aim.target_ms * self.surprise
-        } else {
-            aim.target_ms
-        }
     }
 
     /// Frames in a row measured above the inner band that make a drift (`measured_cut`):
@@ -685,11 +669,11 @@ impl Predictive {
         self.climb(self.cut_floor(), &stages, fits)
     }
 
-    /// The lowest quality a cut may reach: [`Predictive::lowest`], but keeping R on one
-    /// unconfirmed overload (predictions scaled by its surprise): reflections that vanish are
-    /// the most visible cut and the slowest to come back, and one slow frame is often the
-    /// machine's, not the view's. A lasting overload refits the cost model at its second
-    /// outlier, and that cut may take R.
+    /// The lowest quality a cut may reach: [`Predictive::lowest`], but keeping R on a drift
+    /// (predictions scaled by its surprise): reflections that vanish are the most visible cut
+    /// and the slowest to come back, and a few slow frames are often the machine's, not the
+    /// view's. A lasting change of cost refits the cost model at its `confirm`-th outlier,
+    /// and that cut may take R.
     fn cut_floor(&self) -> Quality {
         let lowest = self.lowest();
         if self.surprise > 1.0 {
@@ -769,45 +753,39 @@ impl Controller for Predictive {
         let rays = report.total_rays() as f64;
         let expected = self.cost.predict_ms(rays);
         self.surprise = 1.0;
-        self.one_frame = false;
         let fit = self.cost.observe(rays, report.tp_ms);
-        let hitch = expected.is_some_and(|e| report.tp_ms >= HITCH_RATIO * e);
-        if fit == Fit::Outlier && (hitch || report.tp_ms <= self.setup.band.tmax_ms()) {
-            // Set aside by the cost model: a hitch, or the first frame of a change that the
-            // band tolerates. Over the band and not a hitch, it is an overload to cut now,
-            // not a frame to wait on (below).
+        if fit == Fit::Outlier {
+            // Set aside by the cost model: a spike or a hitch, or the first frames of a change
+            // of cost that its next outliers will confirm.
             self.record(Reason::SetAside, self.quality, Some(report.tp_ms));
             return Ok(self.quality);
         }
-        // An outlier over Tmax (not a hitch) re-plans at once, and with `measured_cut` so does
-        // the second frame in a row measured above the inner band (a drift the model lags);
-        // predictions are then scaled by how much slower the frame ran than predicted.
+        // With `measured_cut`, frames in a row measured above the inner band are a drift the
+        // model lags: predictions are then scaled by how much slower the frame ran than
+        // predicted.
         self.above_run = if report.tp_ms > self.aim().high_ms {
             self.above_run + 1
         } else {
             0
         };
         let drift = self.params.measured_cut && self.above_run >= self.drift_frames();
-        let overload = fit == Fit::Outlier;
         // A model just refitted to the latest frames already explains them.
         let refitted = fit == Fit::Shifted;
-        if let Some(e) = expected.filter(|_| !hitch && !refitted && (overload || drift)) {
+        if let Some(e) = expected.filter(|_| !refitted && drift) {
             self.surprise = (report.tp_ms / e).max(1.0);
-            self.one_frame = !drift;
         }
         self.update_load(report);
         // A surprise under which not even the lowest quality a cut may reach would fit is not
         // one a cut can answer (a fixed cost such as the temporal pass, scaled by it, fills
         // the band alone): cutting to that floor would only flash a poor frame. The
-        // predictions stay as fitted; a lasting change of cost is refitted at its second
-        // outlier.
+        // predictions stay as fitted; a lasting change of cost is refitted at its
+        // `confirm`-th outlier.
         if self.surprise > 1.0
             && self
                 .predict_ms(&self.cut_floor())
-                .is_some_and(|t| t > self.cut_target_ms(&self.aim()))
+                .is_some_and(|t| t > self.aim().target_ms)
         {
             self.surprise = 1.0;
-            self.one_frame = false;
         }
         let choice = self.decide();
         Ok(self.apply(choice, Some(report.tp_ms)))
@@ -827,7 +805,6 @@ impl Controller for Predictive {
         self.load = None;
         self.trend = 0.0;
         self.surprise = 1.0;
-        self.one_frame = false;
         self.above_run = 0;
         self.ladder_pos = None;
         self.decision = None;
@@ -911,8 +888,11 @@ mod tests {
         }
         let aim = c.aim();
         let pct = 100.0 * f64::from(in_band) / f64::from(frames - 100);
-        // Aiming at the centre with the nominal inner band keeps 89 % of these frames.
-        assert!(pct >= 96.5, "{pct:.1} % in band, aim {aim:?}");
+        // Aiming at the centre with the nominal inner band keeps 89 % of these frames, a
+        // perfect aim 97.4 %. The aim's score is averaged over the inner band, here 1.5 ms
+        // on each side under this heavy noise, as if the planned time wandered across it as
+        // it does on a moving view: on this steady one that costs about two points.
+        assert!(pct >= 95.0, "{pct:.1} % in band, aim {aim:?}");
         assert!(aim.target_ms < Band::PAPER.centre_ms(), "{aim:?}");
     }
 
@@ -935,7 +915,7 @@ mod tests {
             // the band and inside the cost model's tolerance.
             for _ in 0..DRIFT_FRAMES {
                 let mut r = frame(c.quality(), 1e6);
-                r.tp_ms = (high + 0.5).min(Band::PAPER.tmax_ms() - 0.1);
+                r.tp_ms = (high + 0.2).min(Band::PAPER.tmax_ms() - 0.1);
                 c.observe(&r).unwrap();
             }
             (settled, c.quality())

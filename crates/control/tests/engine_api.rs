@@ -98,10 +98,7 @@ fn decisions_say_what_moved_and_why() {
     assert_eq!(cut.knobs_moved(), [Knob::Scale]);
     assert!(cut.to.scale < cut.from.scale);
     assert!(
-        matches!(
-            cut.reason,
-            Reason::OneSlowFrame | Reason::Drift | Reason::OverInnerBand
-        ),
+        matches!(cut.reason, Reason::Drift | Reason::OverInnerBand),
         "{cut}"
     );
     assert!(cut.to_string().starts_with("cut scale ("), "{cut}");

@@ -406,9 +406,14 @@ fn a_drifting_cost_per_ray_is_followed_without_swinging() {
                 let records = run(c.as_mut(), &model, 400);
                 let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
                 show(&format!("{name} cost per ray {label}, noise {noise}"), &s);
-                assert!(s.in_band_pct >= 98.5, "{name} {label} noise {noise}: {s:?}");
+                // `predictive` keeps 97.6 % on the rising cost with 3 % noise (98.5 % or more
+                // before issue 47's aim: its inner band now follows the measured noise, and
+                // the errors it measures across a drift include the model's lag), and its
+                // narrower inner band re-plans more often: 1.6 reversals per 100 frames at
+                // most, not the 5.7 of the swinging this test guards against.
+                assert!(s.in_band_pct >= 97.5, "{name} {label} noise {noise}: {s:?}");
                 assert!(
-                    s.reversals_per_100 <= 1.5,
+                    s.reversals_per_100 <= 2.0,
                     "{name} {label} noise {noise}: {s:?}"
                 );
             }
@@ -466,17 +471,17 @@ fn an_r_cut_on_a_shallow_view_is_traded_back_on_a_deep_one() {
     }
 }
 
-/// A pass-sized fixed cost (8 ms), a shallow view whose rays die out before the depth (a
+/// A pass-sized fixed cost (8 ms), a shallow view (the
 /// level reached by some rays, the next by none), a slow spell of sixteen frames at 2.8
-/// times the time, then a deep view (rays bouncing between the mirrors). The spell, which
-/// no quality answers (the fixed cost alone then fills the band), ends cut to the floor, R = 0
-/// included (four frames of it once did; now the first cuts take the scale, in proportion to
-/// the evidence). Frames at R = 0 once measured no level ratio and carried the last
-/// one, read from the two deepest levels alone as 0 (some rays, then none): no level beyond
-/// 0 looked reached, and R stayed 0 on the deep view for good (`predictive +temporal` at one
-/// refresh on the CPU). Now the ratio is read from all measured levels, and each frame counts
-/// the next level's rays (the chains its depth limit stopped), so R comes back as the view
-/// deepens.
+/// times the time, then a deep view (rays bouncing between the mirrors), from R = 0: where a
+/// cut once left a run (the spell, which no quality answers, ended cut to the floor while
+/// one slow frame was cut on; spikes are now set aside until confirmed, and the confirmed
+/// change is taken as a cost per ray, which the scale answers). Frames at R = 0 once
+/// measured no level ratio and carried the last one, read from the two deepest levels
+/// alone as 0 (some rays, then none): no level beyond 0 looked reached, and R stayed 0 on
+/// the deep view for good (`predictive +temporal` at one refresh on the CPU). Now the ratio
+/// is read from all measured levels, and each frame counts the next level's rays (the
+/// chains its depth limit stopped), so R comes back as the view deepens.
 #[test]
 fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
     let shallow = Load {
@@ -498,16 +503,12 @@ fn a_cut_to_r_zero_comes_back_on_a_deep_view() {
     // The deep view at R = 16 fits the band's centre at 0.6 of the scale.
     let model = RendererModel::corridor(720).with_profile(LoadProfile::Frames(loads));
     let mut model = with_fixed_cost(model, &deep, 8.0, 0.6);
-    let start = Quality::new(1.0, 5, 1.0);
+    let start = Quality::new(1.0, 0, 1.0);
     model.spike_factor = 2.8;
     model.spike_frames = (28..44).collect();
     let records = run(controller("predictive", start).as_mut(), &model, 300);
     let depths: Vec<u32> = records.iter().map(|r| r.quality.depth).collect();
     println!("R per frame: {depths:?}");
-    assert!(
-        depths[30..60].contains(&0),
-        "the spell cuts R to 0: {depths:?}"
-    );
     assert!(depths[299] >= 8, "{depths:?}");
 }
 

@@ -67,6 +67,7 @@ pub fn run_controller(
     for k in 0..sweep.frames {
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
+        let decided = controller.decision().cloned();
         let m = source
             .frame(sweep.at(k), q)
             .with_context(|| format!("{name}: frame {k} at {q} failed"))?;
@@ -90,10 +91,13 @@ pub fn run_controller(
             }
         }
         let t_s = source.path_duration_s() * f64::from(k) / f64::from(sweep.frames);
-        rows.push(FrameRow {
-            target_ms,
-            ..FrameRow::measured(k, t_s, &m, sweep.band)
-        });
+        rows.push(
+            FrameRow {
+                target_ms,
+                ..FrameRow::measured(k, t_s, &m, sweep.band)
+            }
+            .with_decisions(decided.as_ref(), controller.decision()),
+        );
         records.push(FrameRecord {
             frame: k as usize,
             tp_ms,

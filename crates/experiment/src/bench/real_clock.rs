@@ -286,6 +286,7 @@ pub fn run_controller_real(
     while let Some(slot) = clock.next_frame() {
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
+        let decided = controller.decision().cloned();
         let ahead = if sweep.warp {
             let first = first_held(&screen, period);
             let count = warps_to_make(first, slot.start_ms, last_busy_ms, period);
@@ -337,12 +338,15 @@ pub fn run_controller_real(
         {
             pictures.insert(before.frame, picture);
         }
-        rows.push(FrameRow {
-            target_ms,
-            warp_ms,
-            display: Some(times),
-            ..FrameRow::measured(slot.index as u32, slot.world_s(), &m, sweep.band)
-        });
+        rows.push(
+            FrameRow {
+                target_ms,
+                warp_ms,
+                display: Some(times),
+                ..FrameRow::measured(slot.index as u32, slot.world_s(), &m, sweep.band)
+            }
+            .with_decisions(decided.as_ref(), controller.decision()),
+        );
         records.push(FrameRecord {
             frame: slot.index,
             tp_ms,

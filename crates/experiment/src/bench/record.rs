@@ -5,8 +5,8 @@ use super::source::Measured;
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
-use steadyray_control::Band;
 use steadyray_control::metrics::RunSummary;
+use steadyray_control::{Band, Decision};
 use steadyray_display::FrameTimes;
 use steadyray_quality::Rgb8Image;
 
@@ -49,6 +49,12 @@ pub struct FrameRow {
     pub speed_p95: f64,
     /// The frame time the controller aimed this frame at, ms (`perceptual` only).
     pub target_ms: Option<f64>,
+    /// The controller's prediction of this frame's Tp when it chose its quality, ms
+    /// (controllers that predict, after their first frames).
+    pub predicted_ms: Option<f64>,
+    /// What the controller decided after this frame, `action:reason` (e.g. `cut:drift`), for
+    /// controllers that explain their decisions.
+    pub decision: Option<String>,
 }
 
 impl FrameRow {
@@ -74,6 +80,19 @@ impl FrameRow {
             speed_mean: m.speed.mean_deg_s,
             speed_p95: m.speed.p95_deg_s,
             target_ms: None,
+            predicted_ms: None,
+            decision: None,
+        }
+    }
+
+    /// The row with the controller's side of the frame: the prediction it chose the
+    /// frame's quality by (`before`, its decision before the frame) and what it decided after
+    /// it (`after`).
+    pub fn with_decisions(self, before: Option<&Decision>, after: Option<&Decision>) -> Self {
+        Self {
+            predicted_ms: before.and_then(|d| d.predicted_ms),
+            decision: after.map(|d| format!("{}:{}", d.action.name(), d.reason.name())),
+            ..self
         }
     }
 }
@@ -115,11 +134,13 @@ pub fn safe_name(name: &str) -> String {
 /// under the frame clock; `speed_mean` and `speed_p95` are the frame's motion on screen (deg/s),
 /// `target_ms` the frame time `perceptual` aimed it at (empty for other controllers),
 /// `warp_ms` the warps made while the frame rendered (`--warp`; the display's time for the
-/// frame is `tp_ms + warp_ms`).
+/// frame is `tp_ms + warp_ms`), `predicted_ms` the controller's prediction of the frame's Tp
+/// and `decision` what it decided after the frame (`action:reason`; both empty for
+/// controllers that do not say).
 pub fn write_frames_csv(runs: &[ControllerRun], path: &Path) -> Result<()> {
     write_csv(
         path,
-        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms,speed_mean,speed_p95,target_ms,warp_ms",
+        "controller,frame,angle,spp,depth,scale,tp_ms,wall_ms,accel_ms,rays,in_band,flip,t_s,start_ms,hand_over_ms,visible_ms,speed_mean,speed_p95,target_ms,warp_ms,predicted_ms,decision",
         |out| write_frame_rows(runs, out),
     )
 }
@@ -139,7 +160,7 @@ fn write_frame_rows(runs: &[ControllerRun], out: &mut dyn Write) -> std::io::Res
             );
             writeln!(
                 out,
-                "{},{},{:.6},{},{},{},{:.4},{:.4},{:.4},{},{},{},{:.6},{},{:.3},{:.3},{},{:.4}",
+                "{},{},{:.6},{},{},{},{:.4},{:.4},{:.4},{},{},{},{:.6},{},{:.3},{:.3},{},{:.4},{},{}",
                 run.name,
                 r.frame,
                 r.angle,
@@ -158,6 +179,9 @@ fn write_frame_rows(runs: &[ControllerRun], out: &mut dyn Write) -> std::io::Res
                 r.speed_p95,
                 r.target_ms.map_or_else(String::new, |t| format!("{t:.4}")),
                 r.warp_ms,
+                r.predicted_ms
+                    .map_or_else(String::new, |t| format!("{t:.4}")),
+                r.decision.as_deref().unwrap_or(""),
             )?;
         }
     }
