@@ -23,8 +23,8 @@
 //!    the prediction uses the measured rays, which carry no timer noise. The inner band starts as
 //!    [Tmin + `deadband`·w, Tmax − `deadband`·w] (w = Tmax − Tmin) around the target
 //!    Tmin + `target`·w; once the recent prediction errors are known, the target follows
-//!    them and the inner band narrows to [`INNER_HALF`] of the band on each side of it
-//!    ([`Predictive::aim`]): on a machine whose noise only ever slows frames down it aims
+//!    them and the inner band narrows to what their scatter allows, [`INNER_HALF`] of the
+//!    band on each side of the target on a quiet machine ([`Predictive::aim`]): on a machine whose noise only ever slows frames down it aims
 //!    below the centre, as far as that noise asks and no further, and holds the planned
 //!    time close to that aim.
 //! 4. Otherwise it takes the highest quality whose predicted time is at most the target,
@@ -66,8 +66,9 @@ pub const DRIFT_CHANCE: f64 = 1e-3;
 pub const MIN_NOISE_FRAMES: usize = 8;
 /// Planned times scored across the band by [`Predictive::aim`].
 const AIM_GRID: u32 = 50;
-/// Once the noise is measured, the inner band spans this fraction of the band on either side
-/// of the target. Frames planned anywhere in a wider inner band met the noise far from the
+/// Once the noise is measured, the inner band spans at least this fraction of the band on
+/// either side of the target (this much on a quiet machine, more on a noisy one:
+/// [`NOISE_HALF`]). Frames planned anywhere in a wider inner band met the noise far from the
 /// aim: on the 2-core VM the old inner band (the times scoring within 5 % of the best,
 /// 16 to 19 ms in [15, 20]) let a tenth of the frames be planned above 18.2 ms, where a
 /// spike of 1.1 already ends over the band. Narrower, the quality moves more often with the
@@ -285,16 +286,18 @@ impl Predictive {
 
     /// Where to aim under the measured noise: the target time and the inner band.
     ///
-    /// Until [`MIN_NOISE_FRAMES`] frames have measured the noise, the target is `target` and
-    /// the inner band `deadband` in from each side of the band. Then each planned time t on a
-    /// grid over the band is scored by how many recent relative prediction errors r keep
-    /// t·(1 + r) inside the band, averaged over the times within [`INNER_HALF`] of the band
-    /// of t (a quality is held while its prediction wanders that far from where it was
-    /// planned, so a time next to a cliff of the count, where the errors that make frames
-    /// fast drop them under Tmin, is not as good as it looks alone). The target is the
-    /// middle of the best-scoring times, and the inner band [`INNER_HALF`] of the band on
-    /// each side of it. Real frame-time noise is one-sided (other work only makes frames
-    /// slower), so this aims below the centre exactly as far as the noise asks.
+    /// Until [`MIN_NOISE_FRAMES`] frames have measured the noise, the target is `target`
+    /// and the inner band `deadband` in from each side of the band. Then each planned time
+    /// t on a grid over the band is scored by how many recent relative prediction errors r
+    /// keep t·(1 + r) inside the band, averaged over the times within the inner band's
+    /// half-width of t ([`NOISE_HALF`] robust deviations of the errors, at least
+    /// [`INNER_HALF`] of the band, at most the nominal inner band's half: a quality is held
+    /// while its prediction wanders that far from where it was planned, so a time next to a
+    /// cliff of the count, where the errors that make frames fast drop them under Tmin, is
+    /// not as good as it looks alone). The target is the middle of the best-scoring times,
+    /// and the inner band that half-width on each side of it. Real frame-time noise is
+    /// one-sided (other work only makes frames slower), so this aims below the centre
+    /// exactly as far as the noise asks.
     pub fn aim(&self) -> Aim {
         self.aim_in(self.setup.band)
     }
