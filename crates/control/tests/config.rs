@@ -2,12 +2,13 @@
 
 mod common;
 
+use std::path::Path;
 use steadyray_control::{Band, Bounds, ConfigError, Quality, Setup, from_name_with};
 
-/// The options a controller needs to be built: none, or `perceptual`'s model.
-fn needed_options(name: &str) -> String {
+/// The options a controller needs to be built: none, or `perceptual`'s model at `model`.
+fn needed_options(name: &str, model: &Path) -> String {
     match name {
-        "perceptual" => format!("model={}", common::model_file().display()),
+        "perceptual" => format!("model={}", model.display()),
         _ => String::new(),
     }
 }
@@ -19,8 +20,9 @@ fn setup() -> Setup {
 
 #[test]
 fn every_name_builds_with_defaults() {
+    let model = common::model_file();
     for name in steadyray_control::CONTROLLER_NAMES {
-        let c = build(name, setup(), &needed_options(name)).unwrap();
+        let c = build(name, setup(), &needed_options(name, model.path())).unwrap();
         assert_eq!(c.name(), name);
         assert_eq!(c.quality(), Bounds::default().max_quality());
     }
@@ -120,8 +122,12 @@ fn bad_bands_bounds_and_starts_are_errors() {
         bounds: inverted,
         start,
     };
+    let model = common::model_file();
     for name in steadyray_control::CONTROLLER_NAMES {
-        assert!(build(name, bad, &needed_options(name)).is_err(), "{name}");
+        assert!(
+            build(name, bad, &needed_options(name, model.path())).is_err(),
+            "{name}"
+        );
     }
     // Step on S needs a whole S inside the bounds: an empty ladder.
     let narrow = Bounds {

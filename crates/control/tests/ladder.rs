@@ -93,9 +93,11 @@ fn setup() -> Setup {
 
 #[test]
 fn holds_the_corridor_sweep_like_the_default_order() {
-    let dir = std::env::temp_dir().join(format!("steadyray-ladder-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("ladder.json");
+    let dir = tempfile::Builder::new()
+        .prefix("steadyray-ladder-")
+        .tempdir()
+        .unwrap();
+    let path = dir.path().join("ladder.json");
     std::fs::write(&path, serde_json::to_string_pretty(&ladder()).unwrap()).unwrap();
     let frames = 720;
     let top = Bounds::default().max_quality();
@@ -125,7 +127,6 @@ fn holds_the_corridor_sweep_like_the_default_order() {
             "seed {seed}: {laddered:?}"
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

@@ -247,7 +247,7 @@ fn options_are_checked() {
     )
     .unwrap_err();
     assert!(missing.to_string().contains("cannot read"), "{missing}");
-    let text = std::fs::read_to_string(model_file()).unwrap();
+    let text = std::fs::read_to_string(model_file().path()).unwrap();
     p.model = Some(steadyray_control::MotionModel::from_json(&text).unwrap());
     assert_eq!(
         p.model.map(|m| m.ladder.points.len()),

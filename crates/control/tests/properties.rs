@@ -29,9 +29,10 @@ proptest! {
     ) {
         let bounds = Bounds::new((1.0, 64.0), (0, 12), (0.25, 1.0)).unwrap();
         let setup = Setup::new(Band::new(tmin, tmin + width).unwrap(), bounds, Quality::new(4.0, 4, 0.5)).unwrap();
+        let model = common::model_file();
         let opts = match name {
             "step" => format!("knob={knob}"),
-            "perceptual" => format!("model={}", common::model_file().display()),
+            "perceptual" => format!("model={}", model.path().display()),
             _ => String::new(),
         };
         let mut c = build(name, setup, &opts).unwrap();

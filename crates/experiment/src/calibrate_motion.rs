@@ -824,8 +824,11 @@ mod tests {
 
     #[test]
     fn a_complete_stimulus_folder_of_the_same_key_is_reused() {
-        let dir = std::env::temp_dir().join(format!("steadyray-stimulus-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::Builder::new()
+            .prefix("steadyray-stimulus-")
+            .tempdir()
+            .unwrap();
+        let dir = tmp.path();
         let key = StimulusKey {
             scene: "corridor".into(),
             resolution: [32, 18],
@@ -837,7 +840,7 @@ mod tests {
             runs: vec!["r1-S1-R16-x1".into(), "r2-S1-R16-x1".into()],
             warp: false,
         };
-        assert_eq!(reuse(&dir, &key), None, "an empty folder");
+        assert_eq!(reuse(dir, &key), None, "an empty folder");
         let flips: BTreeMap<String, f64> = [
             ("r1-S1-R16-x1".to_string(), 0.1),
             ("r2-S1-R16-x1".to_string(), 0.2),
@@ -848,24 +851,23 @@ mod tests {
         })
         .unwrap();
         write_atomically(&dir.join("flip.json"), &text).unwrap();
-        assert_eq!(reuse(&dir, &key), None, "no stimulus.json: not complete");
+        assert_eq!(reuse(dir, &key), None, "no stimulus.json: not complete");
         write_atomically(
             &dir.join("stimulus.json"),
             &serde_json::to_string(&key).unwrap(),
         )
         .unwrap();
-        assert_eq!(reuse(&dir, &key), Some(flips));
+        assert_eq!(reuse(dir, &key), Some(flips));
         let other = StimulusKey {
             speed_deg_s: 32.0,
             ..key
         };
-        assert_eq!(reuse(&dir, &other), None, "another stimulus");
+        assert_eq!(reuse(dir, &other), None, "another stimulus");
         let warped = StimulusKey {
             warp: true,
             ..other
         };
-        assert_eq!(reuse(&dir, &warped), None, "warped stimuli");
-        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(reuse(dir, &warped), None, "warped stimuli");
     }
 
     #[test]

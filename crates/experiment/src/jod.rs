@@ -306,11 +306,11 @@ mod tests {
     use super::*;
     use serde_json::json;
 
-    fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("steadyray-jod-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    fn scratch(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("steadyray-jod-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     fn viewing() -> Value {
@@ -411,11 +411,12 @@ mod tests {
 
     #[test]
     fn scores_land_on_their_runs_and_in_the_table() {
-        let dir = scratch("merge");
-        let summary_path = write(&dir, "summary.json", &summary());
+        let tmp = scratch("merge");
+        let dir = tmp.path();
+        let summary_path = write(dir, "summary.json", &summary());
         let scores =
             json!({"viewing": viewing(), "jod": {"predictive": 8.25, "fixed S=1 R=16": 7.5}});
-        let scores_path = write(&dir, "jod.json", &scores);
+        let scores_path = write(dir, "jod.json", &scores);
         let table = merge(&scores_path, &summary_path).unwrap();
         let merged = read_json(&summary_path).unwrap();
         assert_eq!(merged["controllers"][0]["jod"], json!(7.5));
@@ -441,10 +442,11 @@ mod tests {
 
     #[test]
     fn a_partial_score_list_merges_and_leaves_the_others() {
-        let dir = scratch("partial");
-        let summary_path = write(&dir, "summary.json", &summary());
+        let tmp = scratch("partial");
+        let dir = tmp.path();
+        let summary_path = write(dir, "summary.json", &summary());
         let scores_path = write(
-            &dir,
+            dir,
             "jod.json",
             &json!({"viewing": viewing(), "jod": {"predictive": 8.0}}),
         );
@@ -457,9 +459,10 @@ mod tests {
 
     #[test]
     fn mismatches_are_refused_and_nothing_is_written() {
-        let dir = scratch("refuse");
+        let tmp = scratch("refuse");
+        let dir = tmp.path();
         let original = summary();
-        let summary_path = write(&dir, "summary.json", &original);
+        let summary_path = write(dir, "summary.json", &original);
         let cases = [
             (
                 json!({"viewing": viewing(), "jod": {"hysteresis": 8.0}}),
@@ -476,18 +479,18 @@ mod tests {
             ),
         ];
         for (scores, expected) in cases {
-            let scores_path = write(&dir, "jod.json", &scores);
+            let scores_path = write(dir, "jod.json", &scores);
             let err = format!("{:#}", merge(&scores_path, &summary_path).unwrap_err());
             assert!(err.contains(expected), "{err}");
             assert_eq!(read_json(&summary_path).unwrap(), original);
             assert!(!dir.join("table.md").exists());
         }
         let frames_clock = write(
-            &dir,
+            dir,
             "frames.json",
             &json!({"clock": "frames", "controllers": []}),
         );
-        let scores_path = write(&dir, "jod.json", &json!({"viewing": viewing(), "jod": {}}));
+        let scores_path = write(dir, "jod.json", &json!({"viewing": viewing(), "jod": {}}));
         let err = merge(&scores_path, &frames_clock).unwrap_err().to_string();
         assert!(err.contains("--clock real"), "{err}");
         std::fs::write(dir.join("broken.json"), "{ not json").unwrap();

@@ -156,8 +156,11 @@ mod tests {
     /// that leaves nothing behind.
     #[test]
     fn layout_is_as_documented() {
-        let dir = std::env::temp_dir().join(format!("steadyray-ray-dump-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::Builder::new()
+            .prefix("steadyray-ray-dump-")
+            .tempdir()
+            .unwrap();
+        let dir = tmp.path();
         let path = dir.join("rays.bin");
         let tri = [Vec3::new(1.0, 2.0, 3.0), Vec3::X, Vec3::Y];
         let hit = DumpRay::new(
@@ -211,6 +214,5 @@ mod tests {
         let nowhere = dir.join("no such folder").join("rays.bin");
         let err = write(&nowhere, &[tri], &sets).unwrap_err();
         assert!(format!("{err:#}").contains("cannot create"), "{err:#}");
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -10,8 +10,11 @@ use steadyray_experiment::bench::{self, BenchConfig};
 
 #[test]
 fn the_simulated_bench_writes_the_kept_frames_and_summary() {
-    let out = std::env::temp_dir().join(format!("steadyray-golden-lib-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let dir = tempfile::Builder::new()
+        .prefix("steadyray-golden-lib-")
+        .tempdir()
+        .unwrap();
+    let out = dir.path().join("bench");
     let config = BenchConfig {
         simulate: true,
         out: out.clone(),

@@ -6,11 +6,18 @@
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use steadyray_experiment::bench::{self, BenchConfig};
+use tempfile::TempDir;
 
-/// A short simulated bench of three controllers into a fresh folder named after `test`.
-fn simulated(test: &str, repeat: u32) -> BenchConfig {
-    let out = std::env::temp_dir().join(format!("steadyray-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+/// A fresh temporary folder named after `test`, removed when dropped.
+fn scratch(test: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-{test}-"))
+        .tempdir()
+        .unwrap()
+}
+
+/// A short simulated bench of three controllers into `out`, a folder not made yet.
+fn simulated(out: PathBuf, repeat: u32) -> BenchConfig {
     BenchConfig {
         simulate: true,
         frames: 120,
@@ -32,7 +39,8 @@ fn repetition(out: &Path, k: u32) -> PathBuf {
 
 #[test]
 fn a_repeated_bench_summarises_its_repetitions() {
-    let config = simulated("repeat-3", 3);
+    let dir = scratch("repeat-3");
+    let config = simulated(dir.path().join("bench"), 3);
     bench::run(&config).expect("the repeated simulated bench runs");
     let out = &config.out;
     let runs: Vec<Value> = (1..=3)
@@ -74,26 +82,25 @@ fn a_repeated_bench_summarises_its_repetitions() {
     }
     // Each repetition draws its own noise: the figures spread as fresh runs' do.
     assert!(some_range, "three seeds gave three identical runs");
-    let _ = std::fs::remove_dir_all(out);
 }
 
 #[test]
 fn the_first_repetition_is_the_single_run() {
-    let single = simulated("repeat-single", 1);
+    let dir = scratch("repeat-first");
+    let single = simulated(dir.path().join("single"), 1);
     bench::run(&single).unwrap();
     assert!(!repetition(&single.out, 1).exists());
-    let repeated = simulated("repeat-first", 2);
+    let repeated = simulated(dir.path().join("repeated"), 2);
     bench::run(&repeated).unwrap();
     let frames = |dir: &Path| std::fs::read_to_string(dir.join("frames.csv")).unwrap();
     assert_eq!(frames(&single.out), frames(&repetition(&repeated.out, 1)));
     assert_ne!(frames(&single.out), frames(&repetition(&repeated.out, 2)));
-    let _ = std::fs::remove_dir_all(&single.out);
-    let _ = std::fs::remove_dir_all(&repeated.out);
 }
 
 #[test]
 fn no_repetitions_is_refused_naming_the_flag() {
-    let config = simulated("repeat-0", 0);
+    let dir = scratch("repeat-0");
+    let config = simulated(dir.path().join("bench"), 0);
     let error = bench::run(&config).unwrap_err().to_string();
     assert!(error.contains("--repeat"), "{error}");
     assert!(!config.out.exists(), "nothing is written");

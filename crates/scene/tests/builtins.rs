@@ -52,15 +52,16 @@ fn every_builtin_round_trips_exactly() {
 
 #[test]
 fn load_scene_takes_names_and_paths() {
-    let dir = std::env::temp_dir().join(format!("steadyray-scene-load-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("mine.toml");
+    let tmp = tempfile::Builder::new()
+        .prefix("steadyray-scene-load-")
+        .tempdir()
+        .unwrap();
+    let file = tmp.path().join("mine.toml");
     let corridor = load_scene("corridor").unwrap();
     std::fs::write(&file, scene_to_toml(&corridor)).unwrap();
     let loaded = load_scene(file.to_str().unwrap()).unwrap();
     assert_identical(&corridor, &loaded);
     assert_identical(&corridor, &load_scene_file(&file).unwrap());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 fn object<'a>(s: &'a Scene, name: &str) -> &'a Object {

@@ -3,11 +3,13 @@
 
 use std::path::{Path, PathBuf};
 use steadyray_scene::{Material, Shape, Vec3, parse_scene, scene_to_toml};
+use tempfile::TempDir;
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("steadyray-gltfmat-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-gltfmat-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn base64(bytes: &[u8]) -> String {
@@ -105,9 +107,10 @@ fn round_trips(scene: &steadyray_scene::Scene) {
 
 #[test]
 fn base_colour_becomes_diffuse_albedo() {
-    let d = dir("diffuse");
-    gltf(&d, "red.gltf", &["0"], &format!("[{RED}]"));
-    let s = load(&d, "name = \"tri\"\ntype = \"mesh\"\npath = \"red.gltf\"");
+    let tmp = dir("diffuse");
+    let d = tmp.path();
+    gltf(d, "red.gltf", &["0"], &format!("[{RED}]"));
+    let s = load(d, "name = \"tri\"\ntype = \"mesh\"\npath = \"red.gltf\"");
     assert_eq!(s.objects.len(), 1);
     assert_eq!(s.objects[0].name, "tri");
     assert_eq!(s.materials[s.objects[0].material].0, "tri/red");
@@ -123,17 +126,18 @@ fn base_colour_becomes_diffuse_albedo() {
 
 #[test]
 fn metallic_becomes_mirror_and_transmission_dielectric() {
-    let d = dir("metal");
-    gltf(&d, "gold.gltf", &["0"], &format!("[{GOLD}]"));
-    let s = load(&d, "name = \"tri\"\ntype = \"mesh\"\npath = \"gold.gltf\"");
+    let tmp = dir("metal");
+    let d = tmp.path();
+    gltf(d, "gold.gltf", &["0"], &format!("[{GOLD}]"));
+    let s = load(d, "name = \"tri\"\ntype = \"mesh\"\npath = \"gold.gltf\"");
     assert_eq!(
         *s.material_of(0),
         Material::Mirror {
             reflectance: Vec3::new(1.0, 0.8, 0.3)
         }
     );
-    gltf(&d, "glass.gltf", &["0"], &format!("[{GLASS}]"));
-    let s = load(&d, "name = \"tri\"\ntype = \"mesh\"\npath = \"glass.gltf\"");
+    gltf(d, "glass.gltf", &["0"], &format!("[{GLASS}]"));
+    let s = load(d, "name = \"tri\"\ntype = \"mesh\"\npath = \"glass.gltf\"");
     // An unnamed glTF material is labelled by its index.
     assert_eq!(s.materials[s.objects[0].material].0, "tri/0");
     assert_eq!(
@@ -148,9 +152,10 @@ fn metallic_becomes_mirror_and_transmission_dielectric() {
 
 #[test]
 fn two_materials_make_two_objects() {
-    let d = dir("two");
-    gltf(&d, "two.gltf", &["1", "0"], &format!("[{RED}, {GOLD}]"));
-    let s = load(&d, "name = \"pair\"\ntype = \"mesh\"\npath = \"two.gltf\"");
+    let tmp = dir("two");
+    let d = tmp.path();
+    gltf(d, "two.gltf", &["1", "0"], &format!("[{RED}, {GOLD}]"));
+    let s = load(d, "name = \"pair\"\ntype = \"mesh\"\npath = \"two.gltf\"");
     assert_eq!(s.objects.len(), 2);
     let by_name = |n: &str| s.objects.iter().position(|o| o.name == n).unwrap();
     let red = by_name("pair/red");
@@ -171,10 +176,11 @@ fn two_materials_make_two_objects() {
 
 #[test]
 fn scene_material_overrides_the_files() {
-    let d = dir("override");
-    gltf(&d, "two.gltf", &["1", "0"], &format!("[{RED}, {GOLD}]"));
+    let tmp = dir("override");
+    let d = tmp.path();
+    gltf(d, "two.gltf", &["1", "0"], &format!("[{RED}, {GOLD}]"));
     let s = load(
-        &d,
+        d,
         "name = \"pair\"\ntype = \"mesh\"\nmaterial = \"white\"\npath = \"two.gltf\"",
     );
     assert_eq!(s.objects.len(), 1);
@@ -190,12 +196,13 @@ fn scene_material_overrides_the_files() {
 
 #[test]
 fn missing_materials_are_clear_errors() {
-    let d = dir("errors");
-    gltf(&d, "bare.gltf", &["null"], "[]");
+    let tmp = dir("errors");
+    let d = tmp.path();
+    gltf(d, "bare.gltf", &["null"], "[]");
     let e = parse_scene(
         &scene_text("name = \"t\"\ntype = \"mesh\"\npath = \"bare.gltf\""),
         "test.toml",
-        Some(&d),
+        Some(d),
     )
     .unwrap_err()
     .to_string();
@@ -205,7 +212,7 @@ fn missing_materials_are_clear_errors() {
     );
     // With the override it loads.
     load(
-        &d,
+        d,
         "name = \"t\"\ntype = \"mesh\"\nmaterial = \"white\"\npath = \"bare.gltf\"",
     );
     let e = parse_scene(
@@ -217,10 +224,10 @@ fn missing_materials_are_clear_errors() {
     .to_string();
     assert!(e.contains("shape \"b\": missing `material`"), "{e}");
     // A generated material name that is already taken.
-    gltf(&d, "red.gltf", &["0"], &format!("[{RED}]"));
+    gltf(d, "red.gltf", &["0"], &format!("[{RED}]"));
     let text = scene_text("name = \"t\"\ntype = \"mesh\"\npath = \"red.gltf\"")
         .replace("name = \"white\"", "name = \"t/red\"");
-    let e = parse_scene(&text, "test.toml", Some(&d))
+    let e = parse_scene(&text, "test.toml", Some(d))
         .unwrap_err()
         .to_string();
     assert!(e.contains("\"t/red\", which is already a material"), "{e}");

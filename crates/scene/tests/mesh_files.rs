@@ -5,12 +5,14 @@ use std::path::PathBuf;
 use steadyray_scene::Transform;
 use steadyray_scene::Vec3;
 use steadyray_scene::mesh_import::import_mesh;
+use tempfile::TempDir;
 
-/// A fresh directory for this test's files.
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("steadyray-mesh-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh directory for this test's files, removed when dropped.
+fn dir(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-mesh-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn write(dir: &std::path::Path, name: &str, bytes: &[u8]) -> PathBuf {
@@ -30,7 +32,8 @@ fn import_err(path: &std::path::Path) -> String {
 
 #[test]
 fn bad_obj_files_name_the_file() {
-    let d = dir("obj");
+    let tmp = dir("obj");
+    let d = tmp.path();
     let cases: [(&str, &str, &str); 5] = [
         (
             "syntax.obj",
@@ -51,20 +54,21 @@ fn bad_obj_files_name_the_file() {
         ("empty.obj", "# nothing\n", ""),
     ];
     for (name, text, expect) in cases {
-        let e = import_err(&write(&d, name, text.as_bytes()));
+        let e = import_err(&write(d, name, text.as_bytes()));
         assert!(e.contains(expect), "{name}: {e}");
     }
     let e = import_err(&d.join("missing.obj"));
     assert!(e.contains("cannot read"), "{e}");
-    let e = import_err(&write(&d, "mesh.ply", b"ply\n"));
+    let e = import_err(&write(d, "mesh.ply", b"ply\n"));
     assert!(e.contains("unsupported format"), "{e}");
 }
 
 #[test]
 fn degenerate_obj_triangles_are_skipped_and_counted() {
-    let d = dir("degenerate");
+    let tmp = dir("degenerate");
+    let d = tmp.path();
     let p = write(
-        &d,
+        d,
         "d.obj",
         b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 3 3 3\n",
     );
@@ -116,7 +120,8 @@ fn gltf_file(
 
 #[test]
 fn gltf_nodes_place_their_meshes() {
-    let d = dir("gltf");
+    let tmp = dir("gltf");
+    let d = tmp.path();
     // The root moves by +10 x; its child scales by 2 and carries the mesh; a second child
     // instances the mesh again unscaled.
     let nodes = r#"[
@@ -124,7 +129,7 @@ fn gltf_nodes_place_their_meshes() {
         {"scale": [2, 2, 2], "mesh": 0},
         {"translation": [0, 0, -1], "mesh": 0}
     ]"#;
-    let p = gltf_file(&d, "tri.gltf", nodes, [0, 1, 2], 4);
+    let p = gltf_file(d, "tri.gltf", nodes, [0, 1, 2], 4);
     let transform = Transform {
         translate: Vec3::new(0.0, 5.0, 0.0),
         ..Default::default()
@@ -153,17 +158,18 @@ fn gltf_nodes_place_their_meshes() {
 
 #[test]
 fn bad_gltf_files_name_the_file() {
-    let d = dir("gltf-bad");
-    let e = import_err(&write(&d, "garbage.gltf", b"{ not json"));
+    let tmp = dir("gltf-bad");
+    let d = tmp.path();
+    let e = import_err(&write(d, "garbage.gltf", b"{ not json"));
     assert!(e.contains("malformed glTF"), "{e}");
-    let e = import_err(&write(&d, "garbage.glb", b"glTF\x02\0\0\0junk"));
+    let e = import_err(&write(d, "garbage.glb", b"glTF\x02\0\0\0junk"));
     assert!(e.contains("malformed glTF"), "{e}");
     let one = r#"[{"mesh": 0}]"#;
-    let e = import_err(&gltf_file(&d, "range.gltf", one, [0, 1, 7], 4));
+    let e = import_err(&gltf_file(d, "range.gltf", one, [0, 1, 7], 4));
     assert!(e.contains("index 7 is out of range"), "{e}");
-    let e = import_err(&gltf_file(&d, "lines.gltf", one, [0, 1, 2], 1));
+    let e = import_err(&gltf_file(d, "lines.gltf", one, [0, 1, 2], 1));
     assert!(e.contains("only triangle lists"), "{e}");
-    let e = import_err(&gltf_file(&d, "flat.gltf", one, [0, 1, 1], 4));
+    let e = import_err(&gltf_file(d, "flat.gltf", one, [0, 1, 1], 4));
     assert!(e.contains("degenerate"), "{e}");
     let e = import_err(&d.join("missing.glb"));
     assert!(e.contains("cannot read"), "{e}");

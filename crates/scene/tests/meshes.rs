@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use steadyray_scene::Transform;
 use steadyray_scene::mesh_import::{MeshImportError, MeshProblem, import_mesh};
 use steadyray_scene::*;
+use tempfile::TempDir;
 
 fn repo_mesh(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -12,12 +13,12 @@ fn repo_mesh(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// A fresh directory for one test's files.
-fn temp_dir(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steadyray-scene-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh directory for one test's files, removed when dropped.
+fn temp_dir(test: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-scene-{test}-"))
+        .tempdir()
+        .unwrap()
 }
 
 #[test]
@@ -61,7 +62,8 @@ fn transform_is_applied() {
 
 #[test]
 fn scene_file_mesh_paths_are_relative_to_the_file() {
-    let dir = temp_dir("relative");
+    let tmp = temp_dir("relative");
+    let dir = tmp.path();
     std::fs::create_dir_all(dir.join("meshes")).unwrap();
     std::fs::copy(repo_mesh("teapot.obj"), dir.join("meshes/pot.obj")).unwrap();
     let scene = "[camera]\neye = [0, 1, 5]\ntarget = [0, 1, 0]\n\
@@ -83,7 +85,6 @@ fn scene_file_mesh_paths_are_relative_to_the_file() {
     // Written back inline, it reads back identically.
     let again = parse_scene(&scene_to_toml(&s), "again.toml", None).unwrap();
     assert_eq!(format!("{s:?}"), format!("{again:?}"));
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -122,7 +123,8 @@ fn inline_mesh_with_degenerate_triangle_gives_a_note() {
 /// Writes `obj` as `<name>` in a temp dir and imports it, expecting an error whose message
 /// names the file and contains `problem`.
 fn bad_obj(name: &str, obj: &str, problem: &str) -> MeshImportError {
-    let dir = temp_dir(&format!("bad-{}", name.replace('.', "-")));
+    let tmp = temp_dir(&format!("bad-{}", name.replace('.', "-")));
+    let dir = tmp.path();
     let path = dir.join(name);
     std::fs::write(&path, obj).unwrap();
     let e = import_mesh(&path, &Transform::default()).unwrap_err();
@@ -132,7 +134,6 @@ fn bad_obj(name: &str, obj: &str, problem: &str) -> MeshImportError {
         "file not named: {msg}"
     );
     assert!(msg.contains(problem), "expected {problem:?} in {msg}");
-    std::fs::remove_dir_all(&dir).unwrap();
     e
 }
 
@@ -192,7 +193,8 @@ fn malformed_obj_files() {
 #[test]
 fn texture_and_normal_indices_are_ignored() {
     // Out-of-range texture/normal indices must not upset the import (only v and f count).
-    let dir = temp_dir("texcoord");
+    let tmp = temp_dir("texcoord");
+    let dir = tmp.path();
     let path = dir.join("t.obj");
     let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n\
                f 1/0/0 2/99999999999999999999/ 3//-5\nf 1 1 2\n";
@@ -200,18 +202,18 @@ fn texture_and_normal_indices_are_ignored() {
     let m = import_mesh(&path, &Transform::default()).unwrap();
     assert_eq!(m.mesh.triangles, vec![[0, 1, 2]]);
     assert_eq!(m.degenerate_dropped, 1);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn malformed_mesh_in_a_scene_names_scene_and_mesh() {
-    let dir = temp_dir("scene-bad-mesh");
+    let tmp = temp_dir("scene-bad-mesh");
+    let dir = tmp.path();
     std::fs::write(dir.join("bad.obj"), "v 0 0 0\nv 1 0 0\nf 1 2 3\n").unwrap();
     let scene = "[camera]\neye = [0, 1, 5]\ntarget = [0, 1, 0]\n\
                  [[materials]]\nname = \"white\"\ntype = \"diffuse\"\nalbedo = 0.8\n\
                  [[shapes]]\nname = \"thing\"\ntype = \"mesh\"\nmaterial = \"white\"\n\
                  path = \"bad.obj\"\n";
-    let e = parse_scene(scene, "s.toml", Some(&dir)).unwrap_err();
+    let e = parse_scene(scene, "s.toml", Some(dir)).unwrap_err();
     let msg = e.to_string();
     assert!(
         msg.starts_with("s.toml:12: shape \"thing\": mesh \"bad.obj\": mesh file "),
@@ -220,7 +222,6 @@ fn malformed_mesh_in_a_scene_names_scene_and_mesh() {
     assert!(msg.contains("face vertex index out of bounds"), "{msg}");
     // Both or neither of path and inline data is an error too.
     let both = scene.replace("path = \"bad.obj\"", "");
-    let e = parse_scene(&both, "s.toml", Some(&dir)).unwrap_err();
+    let e = parse_scene(&both, "s.toml", Some(dir)).unwrap_err();
     assert!(e.to_string().contains("needs either `path`"), "{e}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }

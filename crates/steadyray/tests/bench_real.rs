@@ -7,18 +7,19 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::SystemTime;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
+use tempfile::TempDir;
 
 mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "steadyray-bench-real-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+/// A fresh temporary folder, removed when dropped; the tests write their folders, not made
+/// yet, inside it.
+fn scratch(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-bench-real-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn bench(args: &[&str], out: &Path) -> Output {
@@ -68,7 +69,8 @@ fn rows(out: &Path, controller: &str) -> Vec<[f64; 4]> {
 
 #[test]
 fn frames_and_refreshes_are_what_the_display_model_says() {
-    let out = scratch("model");
+    let tmp = scratch("model");
+    let out = tmp.path().join("out");
     let output = bench(
         &[
             "--duration",
@@ -133,7 +135,8 @@ fn frames_and_refreshes_are_what_the_display_model_says() {
 
 #[test]
 fn bad_display_settings_are_clear_errors_and_write_nothing() {
-    let out = scratch("bad");
+    let tmp = scratch("bad");
+    let out = tmp.path().join("out");
     let cases: [(&[&str], &str); 6] = [
         (&["--refresh", "0"], "refresh rate 0"),
         (&["--refresh", "NaN"], "refresh rate NaN"),
@@ -219,10 +222,11 @@ fn bad_display_settings_are_clear_errors_and_write_nothing() {
 /// could have changed the renderer).
 #[test]
 fn video_and_displayed_quality_on_the_cpu_renderer() {
-    let (out, video) = (scratch("video-out"), scratch("video"));
+    let tmp = scratch("video");
+    let (out, video) = (tmp.path().join("out"), tmp.path().join("video"));
     let run = || {
         let output = tiny_cpu_bench()
-            .current_dir(std::env::temp_dir())
+            .current_dir(tmp.path())
             .args([
                 "--controllers",
                 "fixed",
@@ -313,7 +317,8 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
 /// scores the same; without --quality or --video, or under the frame clock, it is refused.
 #[test]
 fn a_reference_store_is_filled_once_and_shared() {
-    let (out, store) = (scratch("store-out"), scratch("store"));
+    let tmp = scratch("store");
+    let (out, store) = (tmp.path().join("out"), tmp.path().join("store"));
     let run = || {
         let output = tiny_cpu_bench()
             .args(["--controllers", "fixed", "--no-best-fixed"])
@@ -383,8 +388,6 @@ fn a_reference_store_is_filled_once_and_shared() {
             "{stderr}"
         );
     }
-    let _ = std::fs::remove_dir_all(&out);
-    let _ = std::fs::remove_dir_all(&store);
 }
 
 /// With warped refreshes, a band of two refreshes a frame leaves room for the warp that
@@ -393,7 +396,8 @@ fn a_reference_store_is_filled_once_and_shared() {
 /// (`--temporal both`) show no warps and keep the band without them.
 #[test]
 fn a_warped_band_leaves_room_for_the_warps_between_frames() {
-    let out = scratch("warped-band");
+    let tmp = scratch("warped-band");
+    let out = tmp.path().join("out");
     let run_with = |band: &str, temporal: &str| -> Value {
         let output = tiny_cpu_bench()
             .args(["--controllers", "fixed", "--no-in-band-fixed"])
@@ -447,14 +451,14 @@ fn a_warped_band_leaves_room_for_the_warps_between_frames() {
 
     let summary = run("refresh");
     assert_eq!(summary["aligned_band"]["warp_ms"], 0.0);
-    std::fs::remove_dir_all(&out).unwrap();
 }
 
 /// A `perceptual` controller under `--warp` is told what a warped refresh costs (measured
 /// before the runs), so that its bands of two or more refreshes leave room for the warps.
 #[test]
 fn a_perceptual_controller_is_told_the_warps_cost() {
-    let out = scratch("perceptual-warp");
+    let tmp = scratch("perceptual-warp");
+    let out = tmp.path().join("out");
     std::fs::create_dir_all(&out).unwrap();
     let model_path = out.join("motion.json");
     support::write_one_point_model(&model_path, [8.0, 8.0]);
@@ -481,7 +485,6 @@ fn a_perceptual_controller_is_told_the_warps_cost() {
         name.starts_with("perceptual") && !name.contains("warp="),
         "{name}"
     );
-    std::fs::remove_dir_all(&out).unwrap();
 }
 
 /// `--only-best-looking-fixed` on the CPU renderer at 32 × 18: every candidate runs for the
@@ -490,9 +493,10 @@ fn a_perceptual_controller_is_told_the_warps_cost() {
 /// is left.
 #[test]
 fn the_best_looking_fixed_quality_is_the_candidate_with_the_lowest_displayed_flip() {
-    let (out, video) = (scratch("best-looking-out"), scratch("best-looking-video"));
+    let tmp = scratch("best-looking");
+    let (out, video) = (tmp.path().join("out"), tmp.path().join("video"));
     let output = tiny_cpu_bench()
-        .current_dir(std::env::temp_dir())
+        .current_dir(tmp.path())
         .args(["--only-best-looking-fixed", "--quality", "--every", "2"])
         .args(["--reference-spp", "4", "--video"])
         .arg(&video)
@@ -539,7 +543,8 @@ fn the_best_looking_fixed_quality_is_the_candidate_with_the_lowest_displayed_fli
 /// not exist is not the error) and before anything is written.
 #[test]
 fn only_best_looking_fixed_needs_the_displayed_quality() {
-    let out = scratch("best-looking-refused");
+    let tmp = scratch("best-looking-refused");
+    let out = tmp.path().join("out");
     for clock in [&["--clock", "real"][..], &["--quality"], &[]] {
         let output = Command::new(BIN)
             .args([

@@ -3,16 +3,17 @@
 //! is a clear error.
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
+use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
-fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steadyray-compare-test-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch() -> TempDir {
+    tempfile::Builder::new()
+        .prefix("steadyray-compare-test-")
+        .tempdir()
+        .unwrap()
 }
 
 fn run(args: &[&str]) -> Output {
@@ -67,7 +68,8 @@ fn compare(reference: &Path, test: &Path, extra: &[&str]) -> Value {
 
 #[test]
 fn flip_is_scored_at_the_viewing_condition_asked() {
-    let dir = scratch();
+    let tmp = scratch();
+    let dir = tmp.path();
     let (reference, test) = (dir.join("reference.png"), dir.join("test.png"));
     render(&reference, "16");
     render(&test, "1");
@@ -101,5 +103,4 @@ fn flip_is_scored_at_the_viewing_condition_asked() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains("--ppd"), "{err}");
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -12,8 +12,11 @@ const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
 #[test]
 fn the_simulated_bench_writes_the_kept_frames_and_summary() {
-    let out = std::env::temp_dir().join(format!("steadyray-golden-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let dir = tempfile::Builder::new()
+        .prefix("steadyray-golden-")
+        .tempdir()
+        .unwrap();
+    let out = dir.path().join("bench");
     let output = Command::new(BIN)
         .args(["bench", "--simulate", "--out"])
         .arg(&out)

@@ -5,14 +5,15 @@
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
-fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steadyray-merge-test-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch() -> TempDir {
+    tempfile::Builder::new()
+        .prefix("steadyray-merge-test-")
+        .tempdir()
+        .unwrap()
 }
 
 fn merge(files: &[&Path], out: &Path) -> Output {
@@ -48,9 +49,10 @@ fn write(dir: &Path, name: &str, value: &Value) -> PathBuf {
 
 #[test]
 fn models_of_the_same_grids_merge_into_their_mean_and_others_are_refused() {
-    let dir = scratch();
-    let a = write(&dir, "a.json", &model("a", 1.0));
-    let b = write(&dir, "b.json", &model("b", 3.0));
+    let tmp = scratch();
+    let dir = tmp.path();
+    let a = write(dir, "a.json", &model("a", 1.0));
+    let b = write(dir, "b.json", &model("b", 3.0));
     let out = dir.join("mean.json");
     let merged = merge(&[&a, &b], &out);
     assert!(merged.status.success(), "{merged:?}");
@@ -68,7 +70,7 @@ fn models_of_the_same_grids_merge_into_their_mean_and_others_are_refused() {
 
     let mut other = model("c", 1.0);
     other["speeds_deg_s"][1] = 9.5.into();
-    let c = write(&dir, "c.json", &other);
+    let c = write(dir, "c.json", &other);
     let refused = merge(&[&a, &c], &dir.join("refused.json"));
     let err = String::from_utf8_lossy(&refused.stderr);
     assert!(!refused.status.success());
@@ -81,5 +83,4 @@ fn models_of_the_same_grids_merge_into_their_mean_and_others_are_refused() {
         !missing.status.success() && err.contains("cannot read"),
         "{err}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }

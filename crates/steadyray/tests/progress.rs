@@ -7,7 +7,11 @@ const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
 #[test]
 fn a_piped_bench_writes_plain_progress_lines() {
-    let out = std::env::temp_dir().join(format!("steadyray-progress-{}", std::process::id()));
+    let dir = tempfile::Builder::new()
+        .prefix("steadyray-progress-")
+        .tempdir()
+        .unwrap();
+    let out = dir.path().join("bench");
     let output = Command::new(BIN)
         .args(["bench", "--simulate", "--frames", "300", "--out"])
         .arg(&out)
@@ -24,5 +28,4 @@ fn a_piped_bench_writes_plain_progress_lines() {
         lines.iter().all(|l| !l.contains('\u{1b}')),
         "escape codes in a plain line: {lines:?}"
     );
-    let _ = std::fs::remove_dir_all(&out);
 }

@@ -143,8 +143,11 @@ fn a_missing_adapter_is_a_clear_error() {
 /// the triangle hit. A folder that does not exist is a clear error.
 #[test]
 fn dumped_rays_are_the_rays_traced() {
-    let dir = std::env::temp_dir().join(format!("steadyray-raybench-dump-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = tempfile::Builder::new()
+        .prefix("steadyray-raybench-dump-")
+        .tempdir()
+        .unwrap();
+    let dir = tmp.path();
     let path = dir.join("rays.bin");
     let output = raybench_with("cpu", None, &["--dump-rays".as_ref(), path.as_os_str()]);
     assert!(
@@ -210,5 +213,4 @@ fn dumped_rays_are_the_rays_traced() {
     assert_eq!(output.status.code(), Some(1), "{stderr}");
     assert!(output.stdout.is_empty());
     assert!(stderr.contains("cannot write the ray dump"), "{stderr}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -3,19 +3,16 @@
 //! times, and a reference of one sample a pixel, are clear errors.
 
 use serde_json::Value;
-use std::path::PathBuf;
 use std::process::{Command, Output};
+use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "steadyray-render-test-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-render-test-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn render(args: &[&str]) -> Output {
@@ -39,7 +36,8 @@ fn stats(out: &Output) -> Value {
 
 #[test]
 fn render_time_shows_the_world_at_that_time() {
-    let dir = scratch("time");
+    let tmp = scratch("time");
+    let dir = tmp.path();
     let png = |t: &str| dir.join(format!("flyby-{t}.png"));
     let mut shots = Vec::new();
     for t in ["2", "5"] {
@@ -83,12 +81,12 @@ fn render_time_shows_the_world_at_that_time() {
         image::open(p).unwrap().into_rgba8()
     };
     assert_ne!(still("3"), still("5"), "the swarm appears at 4 s");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn bad_times_are_clear_errors() {
-    let dir = scratch("bad");
+    let tmp = scratch("bad");
+    let dir = tmp.path();
     let out_png = dir.join("x.png");
     for bad in ["nan", "inf"] {
         let out = render(&[
@@ -114,14 +112,14 @@ fn bad_times_are_clear_errors() {
         out_png.to_str().unwrap(),
     ]);
     assert!(!out.status.success(), "--time and --frame conflict");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A camera that is not finite is refused by the renderer (its rays overflowed the BVH's
 /// traversal stack: a panic). Both renderers call the same check.
 #[test]
 fn a_camera_that_is_not_finite_is_a_clear_error() {
-    let dir = scratch("bad-camera");
+    let tmp = scratch("bad-camera");
+    let dir = tmp.path();
     let out_png = dir.join("x.png");
     let out = render(&["--yaw", "nan", "-o", out_png.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&out.stderr);
@@ -129,12 +127,12 @@ fn a_camera_that_is_not_finite_is_a_clear_error() {
     assert!(!out.status.success());
     assert!(err.contains("cannot render from this camera"), "{err}");
     assert!(!out_png.exists(), "no image for a refused render");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn a_reference_of_one_sample_a_pixel_is_a_clear_error() {
-    let dir = scratch("reference");
+    let tmp = scratch("reference");
+    let dir = tmp.path();
     let out_png = dir.join("x.png");
     // The helper renders at S = 1.
     let out = render(&["--reference", "-o", out_png.to_str().unwrap()]);
@@ -143,5 +141,4 @@ fn a_reference_of_one_sample_a_pixel_is_a_clear_error() {
     assert!(err.contains("a reference needs S >= 2"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
     assert!(!out_png.exists(), "no image for a refused render");
-    std::fs::remove_dir_all(&dir).unwrap();
 }

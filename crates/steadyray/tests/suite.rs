@@ -2,8 +2,9 @@
 //! two runs, tiny images and short stimuli): every cell runs once, a second call redoes
 //! none, shards split the cells, and the table joins them; bad input is refused by name.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
+use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
@@ -15,11 +16,12 @@ fn steadyray(args: &[&str]) -> Output {
         .expect("steadyray runs")
 }
 
-fn folder(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("steadyray-suite-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+/// A fresh temporary folder for a suite's cells, removed when dropped.
+fn folder(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-suite-cli-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// `suite run` of the small suite into `out`, for shard `shard`.
@@ -62,10 +64,11 @@ fn run_small(out: &Path, shard: &str) -> String {
 
 #[test]
 fn a_small_suite_runs_resumes_and_tabulates() {
-    let out = folder("small");
-    let first = run_small(&out, "1/1");
+    let tmp = folder("small");
+    let out = tmp.path();
+    let first = run_small(out, "1/1");
     assert_eq!(counts(&first), (8, 0), "{first}");
-    let second = run_small(&out, "1/1");
+    let second = run_small(out, "1/1");
     assert_eq!(counts(&second), (0, 8), "{second}");
 
     let table = steadyray(&["suite", "table", &out.display().to_string()]);
@@ -83,14 +86,14 @@ fn a_small_suite_runs_resumes_and_tabulates() {
     for file in ["table.md", "table.json", "suite.png", "suite.svg"] {
         assert!(out.join(file).is_file(), "{file}");
     }
-    std::fs::remove_dir_all(&out).unwrap();
 }
 
 #[test]
 fn shards_split_the_cells_between_folders() {
-    let (a, b) = (folder("shard-a"), folder("shard-b"));
-    let ran_a = run_small(&a, "1/2");
-    let ran_b = run_small(&b, "2/2");
+    let (tmp_a, tmp_b) = (folder("shard-a"), folder("shard-b"));
+    let (a, b) = (tmp_a.path(), tmp_b.path());
+    let ran_a = run_small(a, "1/2");
+    let ran_b = run_small(b, "2/2");
     assert_eq!((counts(&ran_a).0, counts(&ran_b).0), (4, 4));
     let table = steadyray(&[
         "suite",
@@ -99,8 +102,6 @@ fn shards_split_the_cells_between_folders() {
         &b.display().to_string(),
     ]);
     assert!(String::from_utf8_lossy(&table.stdout).contains("8 cells"));
-    std::fs::remove_dir_all(&a).unwrap();
-    std::fs::remove_dir_all(&b).unwrap();
 }
 
 #[test]

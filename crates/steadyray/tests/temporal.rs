@@ -9,15 +9,15 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 use steadyray_render::Image;
 use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, sharpened_image};
+use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
-fn scratch(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("steadyray-temporal-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-temporal-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn run(args: &[&str]) -> Output {
@@ -33,7 +33,8 @@ fn stderr(output: &Output) -> String {
 
 #[test]
 fn render_writes_the_history_and_the_sequence() {
-    let dir = scratch("render");
+    let tmp = scratch("render");
+    let dir = tmp.path();
     let out = dir.join("history.png");
     let sequence = dir.join("frames");
     let output = run(&[
@@ -87,7 +88,8 @@ fn render_writes_the_history_and_the_sequence() {
 /// error.
 #[test]
 fn render_shown_writes_the_sharpened_history() {
-    let dir = scratch("shown");
+    let tmp = scratch("shown");
+    let dir = tmp.path();
     let render = |extra: &[&str], out: &PathBuf| {
         let mut args = vec![
             "render",
@@ -151,7 +153,8 @@ fn render_shown_writes_the_sharpened_history() {
 
 #[test]
 fn bad_temporal_values_are_errors() {
-    let dir = scratch("bad");
+    let tmp = scratch("bad");
+    let dir = tmp.path();
     let out = dir.join("x.png");
     let out = out.to_str().unwrap();
     for (args, message) in [
@@ -193,7 +196,8 @@ fn bad_temporal_values_are_errors() {
 
 #[test]
 fn bench_runs_every_controller_without_and_with_history() {
-    let dir = scratch("bench");
+    let tmp = scratch("bench");
+    let dir = tmp.path();
     let output = run(&[
         "bench",
         "--backend",
@@ -248,7 +252,8 @@ fn bench_runs_every_controller_without_and_with_history() {
 /// `summary.json` and the video's `timings.csv`; the plain run does not warp.
 #[test]
 fn bench_warps_the_temporal_runs_refreshes() {
-    let dir = scratch("warp");
+    let tmp = scratch("warp");
+    let dir = tmp.path();
     let video = dir.join("video");
     let output = run(&[
         "bench",
@@ -314,7 +319,8 @@ fn bench_warps_the_temporal_runs_refreshes() {
 
 #[test]
 fn bad_warp_options_are_errors() {
-    let dir = scratch("bad-warp");
+    let tmp = scratch("bad-warp");
+    let dir = tmp.path();
     let out = dir.to_str().unwrap();
     for (args, message) in [
         (vec!["--warp"], "need --clock real"),

@@ -10,6 +10,7 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
+use tempfile::TempDir;
 
 mod support;
 
@@ -112,12 +113,11 @@ impl Drop for Xvfb {
     }
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("steadyray-view-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-view-test-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn run(display: Option<&str>, args: &[&str]) -> Output {
@@ -171,7 +171,8 @@ fn window_matches_render(backend: &str, flag: &[&str], temporal: bool) -> Option
         Ok(x) => x,
         Err(why) => skip!("no X server for the window test: {why}"),
     };
-    let dir = scratch(&format!("{backend}-{temporal}-{}", flag.join("")));
+    let tmp = scratch(&format!("{backend}-{temporal}-{}", flag.join("")));
+    let dir = tmp.path();
     let shot = dir.join("view.png");
     let reference = dir.join("render.png");
     let window = window_args();
@@ -368,7 +369,8 @@ fn the_band_measures_warps_that_no_refresh_shows() {
         Ok(x) => x,
         Err(why) => skip!("no X server for the window test: {why}"),
     };
-    let dir = scratch("unshown-warps");
+    let tmp = scratch("unshown-warps");
+    let dir = tmp.path();
     let model = dir.join("motion.json");
     // One refresh a frame scores far above two, and the controller moves to it at once.
     support::write_one_point_model(&model, [9.0, 5.0]);
@@ -403,7 +405,6 @@ fn the_band_measures_warps_that_no_refresh_shows() {
         .and_then(|t| t.parse::<f64>().ok())
         .unwrap_or_else(|| panic!("no warp in the band's line: {stderr}"));
     assert!(warp_ms > 0.0, "{stderr}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -412,7 +413,8 @@ fn playback_shows_recorded_frames() {
         Ok(x) => x,
         Err(why) => skip!("no X server for the playback test: {why}"),
     };
-    let dir = scratch("playback");
+    let tmp = scratch("playback");
+    let dir = tmp.path();
     let recording = dir.join("recording");
     std::fs::create_dir_all(&recording).unwrap();
     let mut csv = String::from("frame,presented_ms,tp_ms\n");
@@ -510,7 +512,8 @@ fn no_display_is_a_clean_error() {
 
 #[test]
 fn a_broken_recording_is_a_clean_error() {
-    let dir = scratch("broken");
+    let tmp = scratch("broken");
+    let dir = tmp.path();
     std::fs::write(dir.join("timings.csv"), "frame,presented_ms,tp_ms\n0,0,5\n").unwrap();
     let out = run(None, &["view", "--playback", dir.to_str().unwrap()]);
     let stderr = text(&out.stderr);

@@ -3,9 +3,10 @@
 //! join into one table whose ranks follow the scores.
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use steadyray_suite::run::CellEvent;
 use steadyray_suite::{Cell, CellResult, CellRunner, Metric, Plan, Shard, Table, run_cells, store};
+use tempfile::TempDir;
 
 /// Scores each method by its position in the plan (the first method best), slightly
 /// different per run; fails on `fail_on` (a cell id) once; counts the cells it ran.
@@ -46,10 +47,12 @@ impl CellRunner for Scorer {
     }
 }
 
-fn folder(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steadyray-suite-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+/// A fresh temporary folder for one run's cells, removed when dropped.
+fn folder(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("steadyray-suite-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn small_plan() -> Plan {
@@ -65,23 +68,24 @@ fn quiet(_: &Cell, _: usize, _: usize, _: &CellEvent) {}
 
 #[test]
 fn a_killed_run_resumes_and_finished_cells_are_not_redone() {
-    let root = folder("resume");
+    let tmp = folder("resume");
+    let root = tmp.path();
     let plan = small_plan();
     let mut runner = Scorer {
         fail_on: Some("glass/refresh/run-0".into()),
         jod: true,
         ..Scorer::default()
     };
-    let err = run_cells(&plan, Shard::ALL, &root, &mut runner, &mut quiet).unwrap_err();
+    let err = run_cells(&plan, Shard::ALL, root, &mut runner, &mut quiet).unwrap_err();
     assert!(
         err.to_string()
             .contains("glass/refresh/run-0: the renderer failed"),
         "{err}"
     );
-    let done_before = store::read_all(&root).unwrap().len();
+    let done_before = store::read_all(root).unwrap().len();
     assert_eq!(done_before, 4, "the cells before the failure are kept");
 
-    let report = run_cells(&plan, Shard::ALL, &root, &mut runner, &mut quiet).unwrap();
+    let report = run_cells(&plan, Shard::ALL, root, &mut runner, &mut quiet).unwrap();
     assert_eq!(report.already_done, 4);
     assert_eq!(report.ran.len(), plan.cells().len() - 4);
     assert!(
@@ -90,22 +94,21 @@ fn a_killed_run_resumes_and_finished_cells_are_not_redone() {
         runner.ran
     );
     assert!(
-        !store::cell_dir(&root, &report.ran[0])
+        !store::cell_dir(root, &report.ran[0])
             .join("half-written.csv")
             .exists(),
         "the failed cell's leftovers are cleared"
     );
-    let again = run_cells(&plan, Shard::ALL, &root, &mut runner, &mut quiet).unwrap();
+    let again = run_cells(&plan, Shard::ALL, root, &mut runner, &mut quiet).unwrap();
     assert!(again.ran.is_empty());
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]
 fn shards_split_the_cells_and_their_results_join_into_one_table() {
     let plan = small_plan();
-    let roots: Vec<PathBuf> = (1..=3).map(|i| folder(&format!("shard-{i}"))).collect();
+    let roots: Vec<TempDir> = (1..=3).map(|i| folder(&format!("shard-{i}"))).collect();
     let mut results = Vec::new();
-    for (i, root) in roots.iter().enumerate() {
+    for (i, root) in roots.iter().map(TempDir::path).enumerate() {
         let mut runner = Scorer {
             jod: true,
             ..Scorer::default()
@@ -130,31 +133,29 @@ fn shards_split_the_cells_and_their_results_join_into_one_table() {
         markdown.contains("| paper | 9.00 (9.00–9.01) #1 | 9.00 (9.00–9.01) #1 | 1.00 | 2 |"),
         "{markdown}"
     );
-    for root in roots {
-        std::fs::remove_dir_all(root).unwrap();
-    }
 }
 
 #[test]
 fn without_jod_everywhere_the_table_ranks_by_displayed_flip() {
-    let root = folder("flip");
+    let tmp = folder("flip");
+    let root = tmp.path();
     let plan = small_plan();
     let mut runner = Scorer::default();
-    run_cells(&plan, Shard::ALL, &root, &mut runner, &mut quiet).unwrap();
-    let results = store::read_all(&root).unwrap();
+    run_cells(&plan, Shard::ALL, root, &mut runner, &mut quiet).unwrap();
+    let results = store::read_all(root).unwrap();
     let table = Table::new(&results, &[], &[]).unwrap();
     assert_eq!(table.metric, Metric::DisplayedFlip);
     let best = table.rows.iter().find(|r| r.mean_rank == 1.0).unwrap();
     assert_eq!(best.method, "paper", "the lowest FLIP ranks first");
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]
 fn a_result_file_of_another_cell_is_refused() {
-    let root = folder("mismatch");
+    let tmp = folder("mismatch");
+    let root = tmp.path();
     let plan = small_plan();
     let cells = plan.cells();
-    let dir = store::fresh_cell_dir(&root, &cells[0]).unwrap();
+    let dir = store::fresh_cell_dir(root, &cells[0]).unwrap();
     let wrong = CellResult {
         cell: cells[1].clone(),
         displayed_flip: 0.1,
@@ -168,7 +169,6 @@ fn a_result_file_of_another_cell_is_refused() {
         serde_json::to_string(&wrong).unwrap(),
     )
     .unwrap();
-    let err = store::finished(&root, &cells[0]).unwrap_err().to_string();
+    let err = store::finished(root, &cells[0]).unwrap_err().to_string();
     assert!(err.contains("it is the result of"), "{err}");
-    std::fs::remove_dir_all(&root).unwrap();
 }

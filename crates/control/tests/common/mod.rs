@@ -1,10 +1,9 @@
 //! What several test files share: a quality model over (speed, frame time, ladder point)
 //! where still pictures prefer long frames and fast ones short frames.
 
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
 use steadyray_control::{Metric, MotionModel};
+use tempfile::NamedTempFile;
 
 pub const FRAME_TIMES: [f64; 3] = [1000.0 / 60.0, 2000.0 / 60.0, 3000.0 / 60.0];
 pub const FAST: f64 = 60.0;
@@ -73,18 +72,18 @@ pub fn model() -> MotionModel {
     }
 }
 
-/// [`model`] written to a file of its own in the temporary folder, for `model=PATH`.
-pub fn model_file() -> PathBuf {
+/// [`model`] written to a file of its own in the temporary folder, for `model=PATH`; the
+/// file is removed when the returned value is dropped.
+pub fn model_file() -> NamedTempFile {
     // A file per call: tests run in parallel threads, and one writing the file another
     // reads made the reader fail now and then.
-    static CALLS: AtomicUsize = AtomicUsize::new(0);
-    let path = std::env::temp_dir().join(format!(
-        "steadyray-control-test-motion-{}-{}.json",
-        std::process::id(),
-        CALLS.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::write(&path, serde_json::to_string(&model()).unwrap()).unwrap();
-    path
+    let file = tempfile::Builder::new()
+        .prefix("steadyray-control-test-motion-")
+        .suffix(".json")
+        .tempfile()
+        .unwrap();
+    std::fs::write(file.path(), serde_json::to_string(&model()).unwrap()).unwrap();
+    file
 }
 
 /// Reads the files that options name from disk, as the steadyray binary does.

@@ -165,11 +165,13 @@ mod tests {
         }
     }
 
-    fn scratch(name: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("steadyray-store-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        dir
+    /// A fresh temporary folder, removed when dropped; the tests open their store in `store`
+    /// inside it, a folder not made yet.
+    fn scratch(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("steadyray-store-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     fn picture(level: u8) -> Rgb8Image {
@@ -178,7 +180,8 @@ mod tests {
 
     #[test]
     fn pictures_come_back_as_saved_and_set_ups_keep_folders_of_their_own() {
-        let dir = scratch("round-trip");
+        let tmp = scratch("round-trip");
+        let dir = tmp.path().join("store");
         let store = ReferenceStore::open(&dir, &key("a")).unwrap();
         assert_eq!(store.load(0.5).unwrap(), None);
         store.save(0.5, &picture(7)).unwrap();
@@ -187,12 +190,12 @@ mod tests {
         let other = ReferenceStore::open(&dir, &key("b")).unwrap();
         assert_ne!(other.folder(), store.folder());
         assert_eq!(other.load(0.5).unwrap(), None);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
     fn a_folder_of_another_set_up_or_a_picture_of_another_size_is_an_error() {
-        let dir = scratch("mismatch");
+        let tmp = scratch("mismatch");
+        let dir = tmp.path().join("store");
         let store = ReferenceStore::open(&dir, &key("a")).unwrap();
         let held = serde_json::to_string(&key("b")).unwrap();
         std::fs::write(store.folder().join("key.json"), held).unwrap();
@@ -205,6 +208,5 @@ mod tests {
         store.save(1.0, &wrong).unwrap();
         let err = store.load(1.0).unwrap_err();
         assert!(format!("{err:#}").contains("is 2x2, not 4x2"), "{err:#}");
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

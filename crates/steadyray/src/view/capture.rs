@@ -179,9 +179,11 @@ mod tests {
 
     #[test]
     fn saves_a_png() {
-        let path = std::env::temp_dir()
-            .join(format!("steadyray-capture-{}", std::process::id()))
-            .join("shot.png");
+        let dir = tempfile::Builder::new()
+            .prefix("steadyray-capture-")
+            .tempdir()
+            .unwrap();
+        let path = dir.path().join("shots").join("shot.png");
         let shot = Screenshot {
             width: 2,
             height: 1,
@@ -190,6 +192,5 @@ mod tests {
         shot.save(&path).unwrap();
         let back = image::open(&path).unwrap().into_rgba8();
         assert_eq!(back.into_raw(), shot.rgba);
-        std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
     }
 }

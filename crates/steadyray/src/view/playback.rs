@@ -220,7 +220,11 @@ mod tests {
 
     #[test]
     fn plays_frames_at_their_times_once() {
-        let dir = std::env::temp_dir().join(format!("steadyray-playback-{}", std::process::id()));
+        let tmp = tempfile::Builder::new()
+            .prefix("steadyray-playback-")
+            .tempdir()
+            .unwrap();
+        let dir = tmp.path().join("recording");
         write_recording(&dir, 3);
         let r = Recording::open(&dir).unwrap();
         let shown: Vec<usize> = [-1.0, 0.0, 9.9, 10.0, 25.0, 29.9, 30.0, 1e9]
