@@ -1,6 +1,6 @@
 //! `bench --repeat N`: the experiment run N times, each repetition a fresh run written as a
 //! single run writes it into `OUT/repeat-K/`, and the repetitions' figures summarised per
-//! controller as their median and range ([`repeat_summary`](super::repeat_summary)) in
+//! controller as their median and range ([`repeat_summary`]) in
 //! `OUT/summary.json`, `OUT/table.md` and the table printed at the end.
 //!
 //! Every repetition opens its renderer afresh and measures again what the runs need
