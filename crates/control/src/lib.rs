@@ -43,8 +43,9 @@
 //!   outliers on one side confirm a real cost change), predicts each candidate's rays from
 //!   the last frame's rays per depth ([`ray_model`]), extrapolates the load's trend
 //!   (`trend`=0.5), and keeps the quality while the prediction lies inside the inner band
-//!   (`deadband`=0.2 of the band from each side until the noise is measured, then 0.12 of
-//!   the band on each side of a target placed by the measured noise);
+//!   (`deadband`=0.2 of the band from each side until the noise is measured, then around a
+//!   target placed by the measured noise, as narrow as its scatter allows: 0.12 of the band
+//!   on each side on a quiet machine);
 //!   otherwise it takes the highest quality predicted to fit the target (`target`=0.5),
 //!   raising at most `max_raise`=2× the rays per change. Raising order (`order`): R while
 //!   at least `min_reach`=2 % of eye rays reach the deeper level (all of R when the deeper

@@ -24,9 +24,9 @@
 //!    [Tmin + `deadband`·w, Tmax − `deadband`·w] (w = Tmax − Tmin) around the target
 //!    Tmin + `target`·w; once the recent prediction errors are known, the target follows
 //!    them and the inner band narrows to what their scatter allows, [`INNER_HALF`] of the
-//!    band on each side of the target on a quiet machine ([`Predictive::aim`]): on a machine whose noise only ever slows frames down it aims
-//!    below the centre, as far as that noise asks and no further, and holds the planned
-//!    time close to that aim.
+//!    band on each side of the target on a quiet machine ([`Predictive::aim`]): on a
+//!    machine whose noise only ever slows frames down it aims below the centre, as far as
+//!    that noise asks and no further, and holds the planned time close to that aim.
 //! 4. Otherwise it takes the highest quality whose predicted time is at most the target,
 //!    raising at most `max_raise` times the current rays per change
 //!    (cuts are not limited). Quality order (`order`, default `depth,scale,spp`): R first,
@@ -42,7 +42,7 @@
 //! predicted from the measured rays of the current view, so S, R and scale are chosen
 //! together by what looks best for the time the frame may take.
 
-use crate::band::Band;
+use crate::band::{Band, Position};
 use crate::controller::{Controller, Setup, parse_option, within};
 use crate::cost_model::{CostModel, CostParams, Fit};
 use crate::decision::{Action, Decision, Reason};
@@ -310,17 +310,21 @@ impl Predictive {
             low_ms: band.at(p.deadband),
             high_ms: band.at(1.0 - p.deadband),
         };
-        let errors: Vec<f64> = self.cost.recent_errors().collect();
+        let mut errors: Vec<f64> = self.cost.recent_errors().collect();
         if errors.len() < MIN_NOISE_FRAMES {
             return nominal;
         }
+        // Sorted, the errors that keep t·(1 + r) in the band are one run of them, found by
+        // two binary searches per planned time (t·(1 + r) grows with r).
+        errors.sort_by(f64::total_cmp);
         let step = |i: i32| band.at(f64::from(i) / f64::from(AIM_GRID));
         let count_at = |i: i32| {
             let t = step(i);
-            errors
-                .iter()
-                .filter(|&&r| band.contains(t * (1.0 + r)))
-                .count() as f64
+            let under =
+                errors.partition_point(|&r| band.position(t * (1.0 + r)) == Position::Under);
+            let in_or_under =
+                errors.partition_point(|&r| band.position(t * (1.0 + r)) != Position::Over);
+            (in_or_under - under) as f64
         };
         let half = self.inner_half_ms(band, &errors);
         let reach = (half / band.width_ms() * f64::from(AIM_GRID)).round() as i32;
@@ -347,14 +351,12 @@ impl Predictive {
     /// at least [`INNER_HALF`] of the band and at most the nominal inner band's half. On a
     /// quiet machine the quality is held close to its aim; on a noisy one a band that
     /// narrow moved the quality on the noise (the shared 2-core VM's recording: 9.6
-    /// reversals per 100 frames on a steady view).
-    fn inner_half_ms(&self, band: Band, errors: &[f64]) -> f64 {
-        let mut sorted = errors.to_vec();
-        sorted.sort_by(f64::total_cmp);
+    /// reversals per 100 frames on a steady view). `sorted`: the errors, in order.
+    fn inner_half_ms(&self, band: Band, sorted: &[f64]) -> f64 {
         let median = sorted[sorted.len() / 2];
         let mut deviations: Vec<f64> = sorted.iter().map(|r| (r - median).abs()).collect();
-        deviations.sort_by(f64::total_cmp);
-        let sigma = 1.4826 * deviations[deviations.len() / 2];
+        let middle = deviations.len() / 2;
+        let sigma = 1.4826 * *deviations.select_nth_unstable_by(middle, f64::total_cmp).1;
         let nominal = (0.5 - self.params.deadband) * band.width_ms();
         (NOISE_HALF * sigma * band.centre_ms())
             .min(nominal)
