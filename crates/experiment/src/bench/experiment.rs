@@ -67,7 +67,7 @@ pub fn run_controller(
     for k in 0..sweep.frames {
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
-        let decided = controller.decision().cloned();
+        let predicted_ms = controller.decision().and_then(|d| d.predicted_ms);
         let m = source
             .frame(sweep.at(k), q)
             .with_context(|| format!("{name}: frame {k} at {q} failed"))?;
@@ -96,7 +96,7 @@ pub fn run_controller(
                 target_ms,
                 ..FrameRow::measured(k, t_s, &m, sweep.band)
             }
-            .with_decisions(decided.as_ref(), controller.decision()),
+            .with_decision(predicted_ms, controller.decision()),
         );
         records.push(FrameRecord {
             frame: k as usize,

@@ -286,7 +286,7 @@ pub fn run_controller_real(
     while let Some(slot) = clock.next_frame() {
         let q = controller.quality();
         let target_ms = controller.target_frame_ms();
-        let decided = controller.decision().cloned();
+        let predicted_ms = controller.decision().and_then(|d| d.predicted_ms);
         let ahead = if sweep.warp {
             let first = first_held(&screen, period);
             let count = warps_to_make(first, slot.start_ms, last_busy_ms, period);
@@ -345,7 +345,7 @@ pub fn run_controller_real(
                 display: Some(times),
                 ..FrameRow::measured(slot.index as u32, slot.world_s(), &m, sweep.band)
             }
-            .with_decisions(decided.as_ref(), controller.decision()),
+            .with_decision(predicted_ms, controller.decision()),
         );
         records.push(FrameRecord {
             frame: slot.index,

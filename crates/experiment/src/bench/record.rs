@@ -6,7 +6,7 @@ use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
 use steadyray_control::metrics::RunSummary;
-use steadyray_control::{Band, Decision};
+use steadyray_control::{Action, Band, Decision, Reason};
 use steadyray_display::FrameTimes;
 use steadyray_quality::Rgb8Image;
 
@@ -52,9 +52,9 @@ pub struct FrameRow {
     /// The controller's prediction of this frame's Tp when it chose its quality, ms
     /// (controllers that predict, after their first frames).
     pub predicted_ms: Option<f64>,
-    /// What the controller decided after this frame, `action:reason` (e.g. `cut:drift`), for
-    /// controllers that explain their decisions.
-    pub decision: Option<String>,
+    /// What the controller decided after this frame and why (written `action:reason`, e.g.
+    /// `cut:drift`), for controllers that explain their decisions.
+    pub decision: Option<(Action, Reason)>,
 }
 
 impl FrameRow {
@@ -86,12 +86,12 @@ impl FrameRow {
     }
 
     /// The row with the controller's side of the frame: the prediction it chose the
-    /// frame's quality by (`before`, its decision before the frame) and what it decided after
-    /// it (`after`).
-    pub fn with_decisions(self, before: Option<&Decision>, after: Option<&Decision>) -> Self {
+    /// frame's quality by (`predicted_ms`, from its decision before the frame) and what it
+    /// decided after it (`after`).
+    pub fn with_decision(self, predicted_ms: Option<f64>, after: Option<&Decision>) -> Self {
         Self {
-            predicted_ms: before.and_then(|d| d.predicted_ms),
-            decision: after.map(|d| format!("{}:{}", d.action.name(), d.reason.name())),
+            predicted_ms,
+            decision: after.map(|d| (d.action, d.reason)),
             ..self
         }
     }
@@ -181,7 +181,11 @@ fn write_frame_rows(runs: &[ControllerRun], out: &mut dyn Write) -> std::io::Res
                 r.warp_ms,
                 r.predicted_ms
                     .map_or_else(String::new, |t| format!("{t:.4}")),
-                r.decision.as_deref().unwrap_or(""),
+                r.decision.map_or_else(String::new, |(a, why)| format!(
+                    "{}:{}",
+                    a.name(),
+                    why.name()
+                )),
             )?;
         }
     }
