@@ -74,8 +74,10 @@
 //! [`simulate`] is a renderer on a fake clock (cost model, corridor-shaped load, noise,
 //! spikes, a 1 ms timer), which can replay a real machine's recorded timing noise
 //! ([`noise`]: jitter, spikes and spells, fitted from fixed-quality runs); [`metrics`]
-//! computes the benchmark's figures from any run.
+//! computes the benchmark's figures from any run, and [`aim_ceiling()`] the most frames any
+//! one planned frame time could have kept in the band against a run's prediction errors.
 
+pub mod aim_ceiling;
 pub mod band;
 pub mod controller;
 pub mod cost_model;
@@ -97,6 +99,7 @@ pub mod simulate;
 pub mod spec;
 pub mod step;
 
+pub use aim_ceiling::{AimCeiling, aim_ceiling};
 pub use band::{Band, Position};
 pub use controller::{
     CONTROLLER_NAMES, Controller, DisplayCosts, NoFiles, OptionFiles, Setup, from_name,

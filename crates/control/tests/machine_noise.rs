@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use steadyray_control::metrics::{RunSummary, summarize};
 use steadyray_control::noise::{NoiseProcess, NoiseProfile, fit_profile};
 use steadyray_control::simulate::{LoadProfile, RendererModel, corridor_load, run};
-use steadyray_control::{Band, Bounds, Quality, Setup, from_name};
+use steadyray_control::{Band, Bounds, Quality, Setup, aim_ceiling, from_name};
 
 const BAND: Band = Band::PAPER;
 const FRAMES: usize = 720;
@@ -145,25 +145,18 @@ fn a_spike_alone_does_not_cut_under_the_band() {
 }
 
 /// The share of frames (%) that a controller aiming perfectly would keep in `BAND` under
-/// `profile`'s jitter and spikes, its spells tracked exactly: the best constant planned time
-/// against 20,000 drawn factors.
+/// `profile`'s jitter and spikes, its spells tracked exactly: the aim ceiling of 20,000
+/// drawn factors.
 fn perfect_aim_pct(profile: &NoiseProfile) -> f64 {
     let jitter_only = NoiseProfile {
         spell_sigma: 0.0,
         ..profile.clone()
     };
     let mut noise = NoiseProcess::new(jitter_only, 99);
-    let factors: Vec<f64> = (0..20_000).map(|_| noise.factor(20.0)).collect();
-    (0..=200)
-        .map(|i| {
-            let planned = 12.0 + 8.0 * f64::from(i) / 200.0;
-            let kept = factors
-                .iter()
-                .filter(|&&f| BAND.contains(planned * f))
-                .count();
-            100.0 * kept as f64 / factors.len() as f64
-        })
-        .fold(0.0, f64::max)
+    let factors = (0..20_000).map(|_| noise.factor(20.0));
+    aim_ceiling(factors, BAND)
+        .expect("20,000 factors")
+        .in_band_pct
 }
 
 /// A steady view whose frames the band can hold, under each recorded machine's noise:

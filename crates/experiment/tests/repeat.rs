@@ -80,6 +80,16 @@ fn a_repeated_bench_summarises_its_repetitions() {
         assert!(name.starts_with(c["name"].as_str().unwrap()));
         assert!(table.contains(&format!("| {} |", c["name"].as_str().unwrap())));
     }
+    // Only the controller that predicts its frames has an aim ceiling: a share of frames.
+    let ceiling = controllers[3]["aim_ceiling_pct"]["median"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (50.0..=100.0).contains(&ceiling),
+        "predictive's aim ceiling {ceiling}"
+    );
+    assert!(controllers[0].get("aim_ceiling_pct").is_none());
+    assert!(table.contains("| aim ceiling % |"));
     // Each repetition draws its own noise: the figures spread as fresh runs' do.
     assert!(some_range, "three seeds gave three identical runs");
 }

@@ -6,7 +6,7 @@ use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
 use steadyray_control::metrics::RunSummary;
-use steadyray_control::{Action, Band, Decision, Reason};
+use steadyray_control::{Action, AimCeiling, Band, Decision, Reason, aim_ceiling};
 use steadyray_display::FrameTimes;
 use steadyray_quality::Rgb8Image;
 
@@ -114,6 +114,25 @@ pub struct ControllerRun {
     pub recorded: Vec<Rgb8Image>,
     /// What the viewer saw (real clock only).
     pub display: Option<DisplayRun>,
+}
+
+impl ControllerRun {
+    /// The most frames any one planned frame time could have kept in the run's band
+    /// against the run's own prediction errors (each frame's Tp over the prediction its
+    /// quality was chosen by; see [`aim_ceiling`]): what separates the controller's misses
+    /// from the machine's. `None` for a run without predictions, and for one whose
+    /// controller chose a frame time of its own each frame (`perceptual`), which no single
+    /// planned time describes.
+    pub fn aim_ceiling(&self) -> Option<AimCeiling> {
+        if self.rows.iter().any(|r| r.target_ms.is_some()) {
+            return None;
+        }
+        let ratios = self
+            .rows
+            .iter()
+            .filter_map(|r| r.predicted_ms.map(|p| r.tp_ms / p));
+        aim_ceiling(ratios, self.band)
+    }
 }
 
 /// A run's name as a file name: letters, digits, `-`, `_`, `.`, `=` kept, others `_`.

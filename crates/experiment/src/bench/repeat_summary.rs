@@ -11,8 +11,9 @@ use steadyray_display::stats::quantile;
 
 /// The frame clock's table of a repeated bench: header, `summary.json` key, decimals, and
 /// the factor the figure is shown multiplied by (the columns of the single run's table).
-const FRAME_COLUMNS: [(&str, &str, usize, f64); 18] = [
+const FRAME_COLUMNS: [(&str, &str, usize, f64); 19] = [
     ("in band %", "in_band_pct", 1, 1.0),
+    ("aim ceiling %", "aim_ceiling_pct", 1, 1.0),
     ("over %", "over_pct", 1, 1.0),
     ("under %", "under_pct", 1, 1.0),
     ("u@max %", "under_at_max_pct", 1, 1.0),

@@ -101,6 +101,10 @@ struct ControllerEntry<'a> {
     /// 95th percentile of the measured frames' FLIP.
     #[serde(skip_serializing_if = "Option::is_none")]
     flip_p95: Option<f64>,
+    /// The most frames any one planned frame time could have kept in the band against
+    /// the run's prediction errors, % (controllers that predict; `ControllerRun::aim_ceiling`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    aim_ceiling_pct: Option<f64>,
     /// What the viewer saw (real clock).
     #[serde(flatten)]
     display: Option<&'a DisplayFigures>,
@@ -198,6 +202,7 @@ pub fn write_summary(
                 summary: &r.summary,
                 flip_mean: r.flip.map(|f| f.0),
                 flip_p95: r.flip.map(|f| f.1),
+                aim_ceiling_pct: r.aim_ceiling().map(|c| c.in_band_pct),
                 display: r.display.as_ref().map(|d| &d.figures),
                 busy_pct: r.display.as_ref().and_then(|d| d.busy_pct),
                 warps: r
@@ -288,9 +293,10 @@ pub fn table(runs: &[ControllerRun]) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{:<name_width$} {:>7} {:>6} {:>6} {:>8} {:>7} {:>6} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>5} {:>5} {:>8} {:>6} {:>6}",
+        "{:<name_width$} {:>7} {:>7} {:>6} {:>6} {:>8} {:>7} {:>6} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>5} {:>5} {:>8} {:>6} {:>6}",
         "controller",
         "in_band",
+        "ceiling",
         "over",
         "under",
         "u@max",
@@ -318,11 +324,15 @@ pub fn table(runs: &[ControllerRun]) -> String {
             || ("-".to_string(), "-".to_string()),
             |(mean, p95)| (format!("{mean:.4}"), format!("{p95:.4}")),
         );
+        let ceiling = r
+            .aim_ceiling()
+            .map_or_else(|| "-".to_string(), |c| format!("{:.1}%", c.in_band_pct));
         let _ = writeln!(
             out,
-            "{:<name_width$} {:>6.1}% {:>5.1}% {:>5.1}% {:>7.1}% {:>7.2} {:>6.2} {:>7.2} {:>7.2} {:>7.2} {:>7.2} {:>8.2} {:>8} {:>6} {:>5.2} {:>5.2} {:>8.1} {:>6} {:>6}",
+            "{:<name_width$} {:>6.1}% {:>7} {:>5.1}% {:>5.1}% {:>7.1}% {:>7.2} {:>6.2} {:>7.2} {:>7.2} {:>7.2} {:>7.2} {:>8.2} {:>8} {:>6} {:>5.2} {:>5.2} {:>8.1} {:>6} {:>6}",
             r.name,
             s.in_band_pct,
+            ceiling,
             s.over_pct,
             s.under_pct,
             s.under_at_max_pct,
