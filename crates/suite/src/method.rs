@@ -47,7 +47,8 @@ const HISTORY: &str = "--temporal on --warp";
 
 /// The methods that matter: `predictive` at the paper's band and at bands aligned with one
 /// and two refreshes, each with and without the history and its warps; `perceptual` out of
-/// the box (its shipped model) and with the scene's calibrated model (`perceptual-scene`);
+/// the box (its shipped model), without and with the history and its warps, and with the
+/// scene's calibrated model (`perceptual-scene`);
 /// the paper's fixed quality S = 1, R = 16 at the paper's band; and the bench's best-looking
 /// fixed quality (of nine fixed qualities, the one with the lowest displayed FLIP on the
 /// cell's own span; it reports the winner alone).
@@ -84,6 +85,11 @@ pub fn standard_methods() -> Vec<Method> {
             "perceptual",
             "perceptual out of the box, its shipped model",
             "--controllers perceptual",
+        ),
+        Method::new(
+            "perceptual+history",
+            "perceptual out of the box, history and warps",
+            &format!("--controllers perceptual {HISTORY}"),
         ),
         Method::new(
             "perceptual-scene",
