@@ -119,7 +119,7 @@ pub struct ControllerRun {
 impl ControllerRun {
     /// The most frames any one planned frame time could have kept in the run's band
     /// against the run's own prediction errors (each frame's Tp over the prediction its
-    /// quality was chosen by; see [`aim_ceiling`]): what separates the controller's misses
+    /// quality was chosen by; see [`aim_ceiling()`]): what separates the controller's misses
     /// from the machine's. `None` for a run without predictions, and for one whose
     /// controller chose a frame time of its own each frame (`perceptual`), which no single
     /// planned time describes.
