@@ -364,8 +364,8 @@ impl Predictive {
     }
 
     /// The next quality (and its ladder position when it moved along a ladder): unchanged
-    /// inside the inner band, else the best that fits the target; with the reason.
-    fn decide(&self) -> Choice {
+    /// inside `aim`'s inner band, else the best that fits its target; with the reason.
+    fn decide(&self, aim: &Aim) -> Choice {
         let p = &self.params;
         let keep = |reason| Choice {
             quality: self.quality,
@@ -375,7 +375,6 @@ impl Predictive {
         let (Some(now), Some(load)) = (self.predict_ms(&self.quality), &self.load) else {
             return keep(Reason::Learning);
         };
-        let aim = self.aim();
         let raising = now < aim.low_ms;
         if !raising && now <= aim.high_ms {
             let trade = (p.trades && p.ladder.is_none())
@@ -417,9 +416,9 @@ impl Predictive {
         }
     }
 
-    /// Takes `choice` as the next quality and records the decision (`measured_ms`: the frame
-    /// that prompted it, if one did).
-    fn apply(&mut self, choice: Choice, measured_ms: Option<f64>) -> Quality {
+    /// Takes `choice` as the next quality and records the decision made under `aim`
+    /// (`measured_ms`: the frame that prompted it, if one did).
+    fn apply(&mut self, choice: Choice, measured_ms: Option<f64>, aim: &Aim) -> Quality {
         let from = self.quality;
         if choice.quality != from {
             self.above_run = 0;
@@ -428,12 +427,13 @@ impl Predictive {
         if choice.ladder_pos.is_some() {
             self.ladder_pos = choice.ladder_pos;
         }
-        self.record(choice.reason, from, measured_ms);
+        self.record(choice.reason, from, measured_ms, aim);
         self.quality
     }
 
-    /// Records the decision that took the quality from `from` to the current one.
-    fn record(&mut self, reason: Reason, from: Quality, measured_ms: Option<f64>) {
+    /// Records the decision that took the quality from `from` to the current one under
+    /// `aim`.
+    fn record(&mut self, reason: Reason, from: Quality, measured_ms: Option<f64>, aim: &Aim) {
         let to = self.quality;
         let action = if to == from {
             Action::Hold
@@ -451,7 +451,6 @@ impl Predictive {
                 _ => Action::Cut,
             }
         };
-        let aim = self.aim();
         let band = self.setup.band;
         self.decision = Some(Decision {
             action,
@@ -473,8 +472,7 @@ impl Predictive {
     /// p^n ≤ [`DRIFT_CHANCE`], at most [`MAX_DRIFT_FRAMES`]. On a machine whose frames
     /// scatter by 10 % or more, three frames above the inner band happen by chance every
     /// few dozen frames, and each such cut and the raise after it was a reversal.
-    fn drift_frames(&self) -> u32 {
-        let aim = self.aim();
+    fn drift_frames(&self, aim: &Aim) -> u32 {
         let mut errors: Vec<f64> = self.cost.recent_errors().collect();
         if errors.len() < MIN_NOISE_FRAMES {
             return DRIFT_FRAMES;
@@ -597,9 +595,10 @@ impl Predictive {
     pub fn retarget(&mut self, band: Band) -> Quality {
         self.setup.band = band;
         self.above_run = 0;
-        let mut choice = self.decide();
+        let aim = self.aim();
+        let mut choice = self.decide(&aim);
         choice.reason = Reason::NewBand;
-        self.apply(choice, None)
+        self.apply(choice, None, &aim)
     }
 
     /// Where the knob order would settle for `target_ms` on the current view, raised from
@@ -759,21 +758,24 @@ impl Controller for Predictive {
         let expected = self.cost.predict_ms(rays);
         self.surprise = 1.0;
         let fit = self.cost.observe(rays, report.tp_ms);
+        // The aim follows the prediction errors, which only the cost model's `observe` moves:
+        // one aim serves the whole decision.
+        let aim = self.aim();
         if fit == Fit::Outlier {
             // Set aside by the cost model: a spike or a hitch, or the first frames of a change
             // of cost that its next outliers will confirm.
-            self.record(Reason::SetAside, self.quality, Some(report.tp_ms));
+            self.record(Reason::SetAside, self.quality, Some(report.tp_ms), &aim);
             return Ok(self.quality);
         }
         // With `measured_cut`, frames in a row measured above the inner band are a drift the
         // model lags: predictions are then scaled by how much slower the frame ran than
         // predicted.
-        self.above_run = if report.tp_ms > self.aim().high_ms {
+        self.above_run = if report.tp_ms > aim.high_ms {
             self.above_run + 1
         } else {
             0
         };
-        let drift = self.params.measured_cut && self.above_run >= self.drift_frames();
+        let drift = self.params.measured_cut && self.above_run >= self.drift_frames(&aim);
         // A model just refitted to the latest frames already explains them.
         let refitted = fit == Fit::Shifted;
         if let Some(e) = expected.filter(|_| !refitted && drift) {
@@ -788,12 +790,12 @@ impl Controller for Predictive {
         if self.surprise > 1.0
             && self
                 .predict_ms(&self.cut_floor())
-                .is_some_and(|t| t > self.aim().target_ms)
+                .is_some_and(|t| t > aim.target_ms)
         {
             self.surprise = 1.0;
         }
-        let choice = self.decide();
-        Ok(self.apply(choice, Some(report.tp_ms)))
+        let choice = self.decide(&aim);
+        Ok(self.apply(choice, Some(report.tp_ms), &aim))
     }
 
     fn decision(&self) -> Option<&Decision> {
