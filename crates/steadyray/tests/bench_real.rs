@@ -2,25 +2,17 @@
 //! rendered and the refreshes that show them are what the display model gives for the
 //! measured times, and bad display settings are clear errors that leave nothing behind.
 
+mod scratch;
+use scratch::scratch;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::SystemTime;
 use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode};
-use tempfile::TempDir;
 
 mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
-
-/// A fresh temporary folder, removed when dropped; the tests write their folders, not made
-/// yet, inside it.
-fn scratch(name: &str) -> TempDir {
-    tempfile::Builder::new()
-        .prefix(&format!("steadyray-bench-real-{name}-"))
-        .tempdir()
-        .unwrap()
-}
 
 fn bench(args: &[&str], out: &Path) -> Output {
     Command::new(BIN)

@@ -2,19 +2,13 @@
 //! `--ppd` names (the bench's displayed FLIP views a 640-pixel frame at 12.6); a bad `--ppd`
 //! is a clear error.
 
+mod scratch;
+use scratch::scratch;
 use serde_json::Value;
 use std::path::Path;
 use std::process::{Command, Output};
-use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
-
-fn scratch() -> TempDir {
-    tempfile::Builder::new()
-        .prefix("steadyray-compare-test-")
-        .tempdir()
-        .unwrap()
-}
 
 fn run(args: &[&str]) -> Output {
     Command::new(BIN)
@@ -68,7 +62,7 @@ fn compare(reference: &Path, test: &Path, extra: &[&str]) -> Value {
 
 #[test]
 fn flip_is_scored_at_the_viewing_condition_asked() {
-    let tmp = scratch();
+    let tmp = scratch("compare");
     let dir = tmp.path();
     let (reference, test) = (dir.join("reference.png"), dir.join("test.png"));
     render(&reference, "16");

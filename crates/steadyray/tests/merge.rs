@@ -2,19 +2,13 @@
 //! grids (how the model shipped with `perceptual` is made); models of other grids and files
 //! that cannot be read are clear errors.
 
+mod scratch;
+use scratch::scratch;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
-
-fn scratch() -> TempDir {
-    tempfile::Builder::new()
-        .prefix("steadyray-merge-test-")
-        .tempdir()
-        .unwrap()
-}
 
 fn merge(files: &[&Path], out: &Path) -> Output {
     let list: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
@@ -49,7 +43,7 @@ fn write(dir: &Path, name: &str, value: &Value) -> PathBuf {
 
 #[test]
 fn models_of_the_same_grids_merge_into_their_mean_and_others_are_refused() {
-    let tmp = scratch();
+    let tmp = scratch("merge");
     let dir = tmp.path();
     let a = write(dir, "a.json", &model("a", 1.0));
     let b = write(dir, "b.json", &model("b", 3.0));

@@ -2,18 +2,12 @@
 //! the camera) at that scene time, with its time and top-level update in `--stats`; bad
 //! times, and a reference of one sample a pixel, are clear errors.
 
+mod scratch;
+use scratch::scratch;
 use serde_json::Value;
 use std::process::{Command, Output};
-use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
-
-fn scratch(name: &str) -> TempDir {
-    tempfile::Builder::new()
-        .prefix(&format!("steadyray-render-test-{name}-"))
-        .tempdir()
-        .unwrap()
-}
 
 fn render(args: &[&str]) -> Output {
     Command::new(BIN)

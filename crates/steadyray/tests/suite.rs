@@ -2,9 +2,10 @@
 //! two runs, tiny images and short stimuli): every cell runs once, a second call redoes
 //! none, shards split the cells, and the table joins them; bad input is refused by name.
 
+mod scratch;
+use scratch::scratch;
 use std::path::Path;
 use std::process::{Command, Output};
-use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
 
@@ -14,14 +15,6 @@ fn steadyray(args: &[&str]) -> Output {
         .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.."))
         .output()
         .expect("steadyray runs")
-}
-
-/// A fresh temporary folder for a suite's cells, removed when dropped.
-fn folder(name: &str) -> TempDir {
-    tempfile::Builder::new()
-        .prefix(&format!("steadyray-suite-cli-{name}-"))
-        .tempdir()
-        .unwrap()
 }
 
 /// `suite run` of the small suite into `out`, for shard `shard`.
@@ -64,7 +57,7 @@ fn run_small(out: &Path, shard: &str) -> String {
 
 #[test]
 fn a_small_suite_runs_resumes_and_tabulates() {
-    let tmp = folder("small");
+    let tmp = scratch("small");
     let out = tmp.path();
     let first = run_small(out, "1/1");
     assert_eq!(counts(&first), (8, 0), "{first}");
@@ -90,7 +83,7 @@ fn a_small_suite_runs_resumes_and_tabulates() {
 
 #[test]
 fn shards_split_the_cells_between_folders() {
-    let (tmp_a, tmp_b) = (folder("shard-a"), folder("shard-b"));
+    let (tmp_a, tmp_b) = (scratch("shard-a"), scratch("shard-b"));
     let (a, b) = (tmp_a.path(), tmp_b.path());
     let ran_a = run_small(a, "1/2");
     let ran_b = run_small(b, "2/2");

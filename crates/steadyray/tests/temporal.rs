@@ -4,21 +4,15 @@
 //! --temporal both` runs every controller without and with it; `--warp` warps the temporal
 //! runs' refreshes without a new frame; bad values are clear errors.
 
+mod scratch;
+use scratch::scratch;
 use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 use steadyray_render::Image;
 use steadyray_render::temporal::{HISTORY_CAP, SHARPEN, sharpened_image};
-use tempfile::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steadyray");
-
-fn scratch(name: &str) -> TempDir {
-    tempfile::Builder::new()
-        .prefix(&format!("steadyray-temporal-{name}-"))
-        .tempdir()
-        .unwrap()
-}
 
 fn run(args: &[&str]) -> Output {
     Command::new(BIN)

@@ -6,11 +6,12 @@
 //! Without Xvfb (or an adapter) the window tests skip loudly, unless
 //! `STEADYRAY_REQUIRE_GPU=1`, which makes them fail. The bad-input tests need neither.
 
+mod scratch;
+use scratch::scratch;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
-use tempfile::TempDir;
 
 mod support;
 
@@ -111,13 +112,6 @@ impl Drop for Xvfb {
             let _ = std::fs::remove_file(file);
         }
     }
-}
-
-fn scratch(name: &str) -> TempDir {
-    tempfile::Builder::new()
-        .prefix(&format!("steadyray-view-test-{name}-"))
-        .tempdir()
-        .unwrap()
 }
 
 fn run(display: Option<&str>, args: &[&str]) -> Output {
