@@ -37,6 +37,9 @@ pub enum Reason {
     UnderInnerBand,
     /// The band changed (e.g. `perceptual` chose another frame time).
     NewBand,
+    /// The predicted time moved past the target the way the quality last moved (a view
+    /// growing or shrinking in cost): the quality moves on the same way.
+    Follow,
 }
 
 impl Action {
@@ -62,6 +65,7 @@ impl Reason {
             Reason::OverInnerBand => "over_inner_band",
             Reason::UnderInnerBand => "under_inner_band",
             Reason::NewBand => "new_band",
+            Reason::Follow => "follow",
         }
     }
 
@@ -75,6 +79,7 @@ impl Reason {
             Reason::OverInnerBand => "prediction above the inner band",
             Reason::UnderInnerBand => "prediction under the inner band",
             Reason::NewBand => "new band",
+            Reason::Follow => "following the view's cost the way it last moved",
         }
     }
 }
@@ -163,6 +168,7 @@ mod tests {
             Reason::OverInnerBand,
             Reason::UnderInnerBand,
             Reason::NewBand,
+            Reason::Follow,
         ] {
             assert_eq!(
                 serde_json::to_string(&r).unwrap(),

@@ -27,6 +27,10 @@
 //!    band on each side of the target on a quiet machine ([`Predictive::aim`]): on a
 //!    machine whose noise only ever slows frames down it aims below the centre, as far as
 //!    that noise asks and no further, and holds the planned time close to that aim.
+//!    While the view's cost keeps moving the way the last change went (a cut, then more
+//!    load), the side it moves towards is as narrow as on a quiet machine: the quality
+//!    follows the view close to the target, each move the same way as the last, which is
+//!    no reversal; turning back still needs the prediction past the noise-wide inner band.
 //! 4. Otherwise it takes the highest quality whose predicted time is at most the target,
 //!    raising at most `max_raise` times the current rays per change
 //!    (cuts are not limited). Quality order (`order`, default `depth,scale,spp`): R first,
@@ -54,6 +58,9 @@ use crate::report::{FrameReport, ReportError};
 
 /// The largest frame-to-frame load growth the trend extrapolates (±10 %).
 const MAX_GROWTH: f64 = 1.1;
+/// The load's trend (ln of its growth per frame, ±0.05 %) past which a held quality
+/// follows the view's cost the way it last moved (see `Predictive::holding_range`).
+pub const FOLLOW_TREND: f64 = 5e-4;
 /// Frames in a row measured above the inner band that `measured_cut` takes for a drift
 /// (fewer are too often noise, or a coarse timer's rounding).
 pub const DRIFT_FRAMES: u32 = 3;
@@ -214,6 +221,8 @@ pub struct Predictive {
     surprise: f64,
     /// Frames in a row measured above the inner band at the current quality.
     above_run: u32,
+    /// The way the quality last moved ([`Action::Raise`] or [`Action::Cut`]), if it has.
+    last_move: Option<Action>,
     /// Where on the ladder the current quality lies (see [`Predictive::ladder_quality`]);
     /// `None` off the ladder (the starting quality) or without one.
     ladder_pos: Option<f64>,
@@ -243,6 +252,7 @@ impl Predictive {
             trend: 0.0,
             surprise: 1.0,
             above_run: 0,
+            last_move: None,
             ladder_pos: None,
             decision: None,
         })
@@ -375,8 +385,9 @@ impl Predictive {
         let (Some(now), Some(load)) = (self.predict_ms(&self.quality), &self.load) else {
             return keep(Reason::Learning);
         };
-        let raising = now < aim.low_ms;
-        if !raising && now <= aim.high_ms {
+        let (low_ms, high_ms) = self.holding_range(aim);
+        let raising = now < low_ms;
+        if !raising && now <= high_ms {
             let trade = (p.trades && p.ladder.is_none())
                 .then(|| self.order_trade(load, aim.target_ms))
                 .flatten();
@@ -386,7 +397,9 @@ impl Predictive {
                 reason: Reason::InInnerBand,
             };
         }
-        let reason = if raising {
+        let reason = if (aim.low_ms..=aim.high_ms).contains(&now) {
+            Reason::Follow
+        } else if raising {
             Reason::UnderInnerBand
         } else if self.surprise > 1.0 {
             Reason::Drift
@@ -416,6 +429,28 @@ impl Predictive {
         }
     }
 
+    /// The predicted times the current quality is held for: `aim`'s inner band, but only
+    /// [`INNER_HALF`] of the band past the target (as on a quiet machine) on the side the
+    /// quality last moved towards while the view's load keeps going the way that moved it
+    /// (growing after a cut, shrinking after a raise, by [`FOLLOW_TREND`] a frame or more).
+    /// Such a view is followed closely, each move the same way as the last, which is no
+    /// reversal; turning back still needs the prediction past the inner band, as far as
+    /// the noise asks. On a steady view the inner band stays whole: there the prediction
+    /// moves only with the cost model's noise, and following it one way only held the
+    /// quality off-centre.
+    fn holding_range(&self, aim: &Aim) -> (f64, f64) {
+        let follow = INNER_HALF * self.setup.band.width_ms();
+        match self.last_move {
+            Some(Action::Cut) if self.trend > FOLLOW_TREND => {
+                (aim.low_ms, aim.high_ms.min(aim.target_ms + follow))
+            }
+            Some(Action::Raise) if self.trend < -FOLLOW_TREND => {
+                (aim.low_ms.max(aim.target_ms - follow), aim.high_ms)
+            }
+            _ => (aim.low_ms, aim.high_ms),
+        }
+    }
+
     /// Takes `choice` as the next quality and records the decision made under `aim`
     /// (`measured_ms`: the frame that prompted it, if one did).
     fn apply(&mut self, choice: Choice, measured_ms: Option<f64>, aim: &Aim) -> Quality {
@@ -441,7 +476,7 @@ impl Predictive {
             match reason {
                 Reason::InInnerBand => Action::Trade,
                 Reason::UnderInnerBand => Action::Raise,
-                Reason::NewBand => {
+                Reason::NewBand | Reason::Follow => {
                     if to.at_least(&from) {
                         Action::Raise
                     } else {
@@ -451,6 +486,9 @@ impl Predictive {
                 _ => Action::Cut,
             }
         };
+        if matches!(action, Action::Raise | Action::Cut) {
+            self.last_move = Some(action);
+        }
         let band = self.setup.band;
         self.decision = Some(Decision {
             action,
@@ -813,6 +851,7 @@ impl Controller for Predictive {
         self.trend = 0.0;
         self.surprise = 1.0;
         self.above_run = 0;
+        self.last_move = None;
         self.ladder_pos = None;
         self.decision = None;
     }
@@ -901,6 +940,39 @@ mod tests {
         // it does on a moving view: on this steady one that costs about two points.
         assert!(pct >= 95.0, "{pct:.1} % in band, aim {aim:?}");
         assert!(aim.target_ms < Band::PAPER.centre_ms(), "{aim:?}");
+    }
+
+    #[test]
+    fn follows_a_view_growing_in_cost_close_to_the_target() {
+        let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(4.0, 4, 1.0)).unwrap();
+        let mut c = Predictive::new(setup, PredictiveParams::default()).unwrap();
+        let mut rng = crate::simulate::Pcg32::new(3);
+        let follow = INNER_HALF * Band::PAPER.width_ms();
+        let mut pixels = 3e5;
+        let mut follows = 0;
+        for i in 0..200 {
+            let mut r = frame(c.quality(), pixels);
+            // Symmetric noise, σ = 6 %: enough to widen the inner band past `follow`.
+            r.tp_ms *= 1.0 + 0.06 * rng.normal();
+            c.observe(&r).unwrap();
+            pixels *= 1.004;
+            let d = c.decision().unwrap();
+            if i < 50 {
+                continue;
+            }
+            assert!(d.inner_ms[1] - d.target_ms > follow + 0.5, "{d}");
+            if d.reason == Reason::Follow {
+                assert_eq!(d.action, Action::Cut, "{d}");
+                follows += 1;
+            }
+            // Held after a cut, on a view whose cost grows, the planned time stays within
+            // `follow` of the target, not anywhere in the noise-wide inner band.
+            if d.action == Action::Hold && c.last_move == Some(Action::Cut) {
+                let planned = d.predicted_ms.unwrap();
+                assert!(planned <= d.target_ms + follow + 1e-9, "{d}");
+            }
+        }
+        assert!(follows >= 5, "{follows} follow cuts");
     }
 
     #[test]
