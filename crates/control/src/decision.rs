@@ -99,7 +99,8 @@ pub struct Decision {
     pub predicted_ms: Option<f64>,
     /// The time aimed at, ms.
     pub target_ms: f64,
-    /// The inner band: the quality is kept while its predicted time lies in it, ms.
+    /// The inner band: the quality is kept while its predicted time lies in it, ms (for
+    /// `predictive` following a view's cost, narrowed on the side it follows).
     pub inner_ms: [f64; 2],
     /// The band, ms.
     pub band_ms: [f64; 2],

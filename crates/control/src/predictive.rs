@@ -470,6 +470,7 @@ impl Predictive {
     /// `aim`.
     fn record(&mut self, reason: Reason, from: Quality, measured_ms: Option<f64>, aim: &Aim) {
         let to = self.quality;
+        let held_ms = self.holding_range(aim);
         let action = if to == from {
             Action::Hold
         } else {
@@ -496,7 +497,7 @@ impl Predictive {
             measured_ms,
             predicted_ms: self.predict_ms(&to),
             target_ms: aim.target_ms,
-            inner_ms: [aim.low_ms, aim.high_ms],
+            inner_ms: [held_ms.0, held_ms.1],
             band_ms: [band.tmin_ms(), band.tmax_ms()],
             from,
             to,
@@ -960,7 +961,7 @@ mod tests {
             if i < 50 {
                 continue;
             }
-            assert!(d.inner_ms[1] - d.target_ms > follow + 0.5, "{d}");
+            assert!(c.aim().high_ms - d.target_ms > follow + 0.5, "{d}");
             if d.reason == Reason::Follow {
                 assert_eq!(d.action, Action::Cut, "{d}");
                 follows += 1;
@@ -970,6 +971,7 @@ mod tests {
             if d.action == Action::Hold && c.last_move == Some(Action::Cut) {
                 let planned = d.predicted_ms.unwrap();
                 assert!(planned <= d.target_ms + follow + 1e-9, "{d}");
+                assert!((d.inner_ms[1] - (d.target_ms + follow)).abs() < 1e-9, "{d}");
             }
         }
         assert!(follows >= 5, "{follows} follow cuts");
