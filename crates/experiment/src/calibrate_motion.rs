@@ -21,7 +21,7 @@
 //! table scores what a long frame costs when its age is warped away.
 
 use crate::bench::displayed::{TimedReferences, measure, screen_samples};
-use crate::bench::machine::git_revision;
+use crate::bench::machine::reference_revision;
 use crate::bench::reference_store::{StoreKey, digest};
 use crate::bench::screen::{DisplayRun, Warps};
 use crate::bench::source::{
@@ -554,7 +554,7 @@ impl Stimulus {
                 resolution: [plan.width, plan.height],
                 spp: plan.reference.spp,
                 depth: plan.reference.depth,
-                git_revision: git_revision(),
+                renderer_revision: reference_revision(),
             },
             refresh_hz: plan.refresh_hz,
             refreshes: count,

@@ -307,12 +307,15 @@ fn video_and_displayed_quality_on_the_cpu_renderer() {
 /// `--references DIR`: the first tiny CPU bench renders its references into the store, a
 /// second one finds every reference there and renders none (the store gains no file), and
 /// scores the same; without --quality or --video, or under the frame clock, it is refused.
+/// (Run outside a git checkout, whose uncommitted changes to the renderer would make each
+/// bench render its own.)
 #[test]
 fn a_reference_store_is_filled_once_and_shared() {
     let tmp = scratch("store");
     let (out, store) = (tmp.path().join("out"), tmp.path().join("store"));
     let run = || {
         let output = tiny_cpu_bench()
+            .current_dir(tmp.path())
             .args(["--controllers", "fixed", "--no-best-fixed"])
             .args(["--reference-spp", "4", "--quality", "--every", "2"])
             .arg("--references")

@@ -13,7 +13,7 @@
 //! ```
 //!
 //! The folder of one set-up is named by a digest of its [`StoreKey`], so benches of other
-//! scenes, sizes, renderers or source revisions keep theirs beside it. Each picture is written
+//! scenes, sizes, renderers or renderer revisions keep theirs beside it. Each picture is written
 //! under a temporary name and renamed, so benches on several machines can share `DIR`.
 
 use super::displayed::time_key;
@@ -42,8 +42,10 @@ pub struct StoreKey {
     pub spp: f32,
     /// The reference's depth R.
     pub depth: u32,
-    /// The source revision that renders them.
-    pub git_revision: String,
+    /// The last source revision that changed what they show
+    /// ([`super::machine::reference_revision`]): a revision that changed only a controller
+    /// reuses them.
+    pub renderer_revision: String,
 }
 
 /// A hex digest (64-bit FNV-1a) of `text`: stable across runs, machines and Rust versions.
@@ -161,7 +163,7 @@ mod tests {
             resolution: [4, 2],
             spp: 16.0,
             depth: 16,
-            git_revision: "abc".into(),
+            renderer_revision: "abc".into(),
         }
     }
 

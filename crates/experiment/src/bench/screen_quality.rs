@@ -151,7 +151,8 @@ pub fn measure_screens(
 
 /// The references every real-clock run of the bench shares, empty at first: with
 /// `--references DIR`, backed by the store of this scene, renderer, size, reference quality
-/// and revision in `DIR`.
+/// and renderer revision in `DIR`; not where the renderer's sources have uncommitted changes
+/// (two such runs could differ and still share a key), which render their own.
 pub fn screen_references(
     config: &BenchConfig,
     described: &Described,
@@ -162,7 +163,16 @@ pub fn screen_references(
     let Some(dir) = &config.references else {
         return Ok(references);
     };
-    let store = ReferenceStore::open(dir, &store_key(described, quality, source))?;
+    let key = store_key(described, quality, source);
+    if key.renderer_revision.ends_with("-dirty") {
+        eprintln!(
+            "bench: --references {} not used: the renderer's sources have uncommitted \
+             changes, so this run renders its own references",
+            dir.display()
+        );
+        return Ok(references);
+    }
+    let store = ReferenceStore::open(dir, &key)?;
     eprintln!("bench: references kept in {}", store.folder().display());
     Ok(references.with_store(store))
 }
@@ -178,6 +188,6 @@ fn store_key(described: &Described, quality: Quality, source: &dyn FrameSource) 
         resolution: [width, height],
         spp: quality.spp,
         depth: quality.depth,
-        git_revision: machine::git_revision(),
+        renderer_revision: machine::reference_revision(),
     }
 }
