@@ -18,10 +18,12 @@
 //!    fast turn gets short frames from its first frame and a speed jittering across the
 //!    point where two frame times score the same does not switch between them;
 //! 3. moves the target to the best frame time, hysteretically: only when it scores more than
-//!    `margin` (a fraction of the table's spread) above the current one, and at most once per
-//!    `hold_ms` of display time (counted as each frame's target time), so the rate does not
-//!    flicker between two refresh multiples. A target none of whose settings fits any more
-//!    (the cheapest predicted over its band) gives way at once.
+//!    `margin` (a fraction of the table's spread) above the current one; to a shorter frame
+//!    time at once (motion that asks for it has begun, and each frame held longer shows it
+//!    juddering), to a longer one only `hold_ms` of display time (counted as each frame's
+//!    target time) after the last change, so the rate does not flicker between two refresh
+//!    multiples. A target none of whose settings fits any more (the cheapest predicted over
+//!    its band) gives way at once.
 //!
 //! The band for a frame time T of M refreshes of the model's display (so that a frame started
 //! at a refresh is handed over before the refresh T later, with `slack` of T kept free for
@@ -66,8 +68,9 @@ pub struct PerceptualParams {
     /// `model`: the quality model (a `motion.json`). Default (`None`): the shipped one,
     /// [`MotionModel::shipped`].
     pub model: Option<MotionModel>,
-    /// `hold_ms`: display time (ms, each frame counted at its target time) between two
-    /// changes of the target. Default 500.
+    /// `hold_ms`: display time (ms, each frame counted at its target time) from a change of
+    /// the target to a move to a longer frame time; a move to a shorter one is taken at once.
+    /// Default 500.
     pub hold_ms: f64,
     /// `margin`: how much better another frame time must score to be taken, as a fraction
     /// of the model's spread of scores. Default 0.02.
@@ -332,7 +335,8 @@ impl Perceptual {
     }
 
     /// The frame time to target next, from the prospects: the best, if it beats the current
-    /// target by the margin after the hold (at once if the current one cannot be kept).
+    /// target by the margin, at once when it is shorter (or the current one cannot be
+    /// kept), after the hold when it is longer.
     fn choose(&self, prospects: &[Prospect]) -> usize {
         // Ties go to the longer frame time (the better picture); none feasible: the longest.
         let best = (0..prospects.len())
@@ -353,7 +357,8 @@ impl Perceptual {
             Some(current) => {
                 let margin = self.margin * self.model.spread();
                 let better = best_utility > current + margin;
-                if better && self.held_ms >= self.hold_ms {
+                let shorter = best < self.target;
+                if better && (shorter || self.held_ms >= self.hold_ms) {
                     best
                 } else {
                     self.target

@@ -137,19 +137,53 @@ fn the_target_follows_the_speed_profile_and_holds_each_change() {
             .collect();
         assert!(got.iter().all(|&t| t == want), "segment {segment}: {got:?}");
     }
-    // No two changes closer than the hold (display time counted at the target times).
+    // No move to a longer frame time closer than the hold to the change before it (display
+    // time counted at the target times); a move to a shorter one is not held back.
     let hold_ms = PerceptualParams::default().hold_ms;
     let changes = switches(&steps);
     for pair in changes.windows(2) {
+        let longer = steps[pair[1]].target_ms > steps[pair[1] - 1].target_ms;
         let held: f64 = steps[pair[0]..pair[1]].iter().map(|s| s.target_ms).sum();
         assert!(
-            held >= hold_ms,
+            !longer || held >= hold_ms,
             "changes at frames {pair:?}, {held} ms apart"
         );
     }
     // The jitter: one change (to the short frames the faster speed asks for), then none.
     let jittery = changes.iter().filter(|&&i| i > jitter_from).count();
     assert!(jittery <= 1, "{changes:?}");
+}
+
+/// A turn that starts right after the target moved to longer frames is not held back by
+/// the hold: its first frames already aim at the shortest frame time.
+#[test]
+fn a_turn_right_after_a_longer_target_gets_short_frames_at_once() {
+    const TURN: usize = 60;
+    let mut speeds = vec![FAST; TURN];
+    speeds.extend(std::iter::repeat_n(0.0, 300));
+    let still = run(&mut controller(), &speeds);
+    let lengthened = (TURN..speeds.len())
+        .find(|&i| still[i].target_ms > still[i - 1].target_ms)
+        .expect("the target never moved to longer frames once still");
+
+    // The same run, a turn again the frame after that change.
+    let turn_at = lengthened + 1;
+    speeds.truncate(turn_at);
+    speeds.extend(std::iter::repeat_n(FAST, 30));
+    let steps = run(&mut controller(), &speeds);
+    assert!(steps[lengthened].target_ms > FRAME_TIMES[0]);
+    let held: f64 = steps[lengthened..turn_at + 3]
+        .iter()
+        .map(|s| s.target_ms)
+        .sum();
+    assert!(held < PerceptualParams::default().hold_ms, "{held} ms");
+    assert!(
+        steps[turn_at + 3..]
+            .iter()
+            .all(|s| s.target_ms == FRAME_TIMES[0]),
+        "{:?}",
+        switches(&steps)
+    );
 }
 
 /// Out of the box (the shipped model, no options), on a view where the ladder's top does not
