@@ -133,6 +133,10 @@ mod tests {
 
     #[test]
     fn the_reference_revision_moves_only_with_the_sources_of_the_pictures() {
+        if Command::new("git").arg("--version").output().is_err() {
+            eprintln!("SKIPPED: no git on this machine, so no revisions to tell apart");
+            return;
+        }
         let tmp = tempfile::Builder::new()
             .prefix("steadyray-revision-")
             .tempdir()
