@@ -59,6 +59,9 @@ pub const REFERENCE_SOURCES: [&str; 9] = [
     "Cargo.lock",
 ];
 
+/// What a revision ends with when the sources it stands for have uncommitted changes.
+pub const DIRTY: &str = "-dirty";
+
 /// The git revision of the working tree the command runs in (with `-dirty` when it has
 /// uncommitted changes), or the version this binary was built as when there is no git.
 pub fn git_revision() -> String {
@@ -97,7 +100,7 @@ pub fn revision_in(dir: &Path, sources: &[&str]) -> String {
             let dirty = git(&["status", "--porcelain", "--untracked-files=no"])
                 .is_some_and(|s| !s.is_empty());
             if dirty {
-                format!("{short}-dirty")
+                format!("{short}{DIRTY}")
             } else {
                 short.to_string()
             }

@@ -48,6 +48,14 @@ pub struct StoreKey {
     pub renderer_revision: String,
 }
 
+impl StoreKey {
+    /// Whether references of this key may be kept and reused: not when the renderer's
+    /// sources have uncommitted changes (two such runs could differ and still share a key).
+    pub fn reusable(&self) -> bool {
+        !self.renderer_revision.ends_with(super::machine::DIRTY)
+    }
+}
+
 /// A hex digest (64-bit FNV-1a) of `text`: stable across runs, machines and Rust versions.
 pub fn digest(text: &str) -> String {
     let mut hasher = fnv::FnvHasher::default();
@@ -178,6 +186,16 @@ mod tests {
 
     fn picture(level: u8) -> Rgb8Image {
         Rgb8Image::from_fn(4, 2, |x, y| [level, x as u8, y as u8])
+    }
+
+    #[test]
+    fn a_key_of_uncommitted_renderer_sources_is_not_reusable() {
+        assert!(key("a").reusable());
+        let dirty = StoreKey {
+            renderer_revision: "abc-dirty".into(),
+            ..key("a")
+        };
+        assert!(!dirty.reusable());
     }
 
     #[test]

@@ -151,8 +151,8 @@ pub fn measure_screens(
 
 /// The references every real-clock run of the bench shares, empty at first: with
 /// `--references DIR`, backed by the store of this scene, renderer, size, reference quality
-/// and renderer revision in `DIR`; not where the renderer's sources have uncommitted changes
-/// (two such runs could differ and still share a key), which render their own.
+/// and renderer revision in `DIR`; not where that key is not [`StoreKey::reusable`], which
+/// renders its own.
 pub fn screen_references(
     config: &BenchConfig,
     described: &Described,
@@ -164,7 +164,7 @@ pub fn screen_references(
         return Ok(references);
     };
     let key = store_key(described, quality, source);
-    if key.renderer_revision.ends_with("-dirty") {
+    if !key.reusable() {
         eprintln!(
             "bench: --references {} not used: the renderer's sources have uncommitted \
              changes, so this run renders its own references",

@@ -312,7 +312,7 @@ pub fn write_references(
     let cached = std::fs::read_to_string(&meta)
         .ok()
         .and_then(|text| serde_json::from_str::<ReferenceKey>(&text).ok())
-        .is_some_and(|k| &k == key && !key.set_up.renderer_revision.ends_with("-dirty"));
+        .is_some_and(|k| &k == key && key.set_up.reusable());
     if cached {
         for (i, &t) in times_s.iter().enumerate() {
             if wanted(t) {
