@@ -34,6 +34,13 @@
 use crate::quality::Quality;
 use serde::{Deserialize, Serialize};
 
+/// The lowest position along a ladder (point k at position k): the ladder's cheapest point
+/// at the controller's lowest resolution scale. Between it and position 0 (the cheapest
+/// point itself) the scale falls linearly and S and R stay the cheapest point's, so a view
+/// dearer than the calibration's still has a setting that fits the band: a ladder
+/// calibrated on another scene or machine often starts too high for it.
+pub const LADDER_FLOOR: f64 = -1.0;
+
 /// One setting on the ladder, with what calibration measured for it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LadderPoint {

@@ -41,7 +41,9 @@
 //!
 //! Between grid values the model interpolates linearly in speed and in the ladder position
 //! (as the `predictive` controller moves between ladder points), and holds the end values
-//! beyond the grid's speeds.
+//! beyond the grid's speeds and above the top point. Below the cheapest point, where the
+//! controller goes on at lower resolution ([`crate::ladder::LADDER_FLOOR`]), the score
+//! falls by the row's mean gain per point.
 //!
 //! # The shipped default
 //!
@@ -53,7 +55,7 @@
 //! only each scene's own ordering of the frame times at each speed. How it was made, and how
 //! to make it again: `docs/default-motion-model.md`.
 
-use crate::ladder::Ladder;
+use crate::ladder::{LADDER_FLOOR, Ladder};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -267,11 +269,23 @@ impl MotionModel {
     }
 
     /// The score at grid speed `i`, frame time `j` and ladder position `u` (linear between
-    /// points, clamped to the ladder).
+    /// points, held beyond the top point). Below point 0, down to [`LADDER_FLOOR`] (the
+    /// cheapest point at lower resolution, which no stimulus showed), the utility falls
+    /// from point 0's by the row's mean gain per point (none when the row does not rise), so
+    /// that position is never taken for better than the cheapest point measured.
     fn at_position(&self, i: usize, j: usize, u: f64) -> f64 {
         let cells = &self.scores[i][j];
         let last = cells.len() - 1;
-        let u = u.clamp(0.0, last as f64);
+        if u < 0.0 {
+            let sign = self.metric.sign();
+            let gain = if last > 0 {
+                (sign * (cells[last] - cells[0]) / last as f64).max(0.0)
+            } else {
+                0.0
+            };
+            return cells[0] + sign * gain * u.max(LADDER_FLOOR);
+        }
+        let u = u.min(last as f64);
         let k = (u.floor() as usize).min(last);
         let t = u - k as f64;
         cells[k] + t * (cells[(k + 1).min(last)] - cells[k])
@@ -376,6 +390,30 @@ mod tests {
             ..m
         };
         assert_eq!(flip.utility(0.0, 0, 0.0), -6.0);
+    }
+
+    #[test]
+    fn below_the_cheapest_point_the_utility_falls_by_the_rows_mean_gain() {
+        let m = model();
+        // JOD, rising 2 a point: half a point below costs 1, the floor 2, no further.
+        assert_eq!(m.score(0.0, 0, -0.5), 5.0);
+        assert_eq!(m.score(0.0, 0, LADDER_FLOOR), 4.0);
+        assert_eq!(m.score(0.0, 0, -7.0), 4.0);
+        // Displayed FLIP (lower is better), falling 0.02 a point: the floor scores 0.02
+        // worse than the cheapest point.
+        let flip = MotionModel {
+            metric: Metric::DisplayedFlip,
+            scores: vec![vec![vec![0.06, 0.04]; 2]; 2],
+            ..m.clone()
+        };
+        assert!((flip.score(0.0, 0, LADDER_FLOOR) - 0.08).abs() < 1e-12);
+        // A row that does not rise (calibration noise) gives the floor point 0's score,
+        // never a better one.
+        let flat = MotionModel {
+            scores: vec![vec![vec![6.0, 5.5]; 2]; 2],
+            ..m
+        };
+        assert_eq!(flat.score(0.0, 0, LADDER_FLOOR), 6.0);
     }
 
     #[test]

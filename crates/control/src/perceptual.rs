@@ -22,8 +22,11 @@
 //!    time at once (motion that asks for it has begun, and each frame held longer shows it
 //!    juddering), to a longer one only `hold_ms` of display time (counted as each frame's
 //!    target time) after the last change, so the rate does not flicker between two refresh
-//!    multiples. A target none of whose settings fits any more (the cheapest predicted over
-//!    its band) gives way at once.
+//!    multiples. A target none of whose settings fits any more (the model's cheapest point
+//!    at the lowest resolution scale, [`crate::ladder::LADDER_FLOOR`], predicted over its
+//!    band) gives way at once. Below the cheapest point the model's score falls by its mean
+//!    gain per point ([`MotionModel::score`]), so a shorter frame time reached only at lower
+//!    resolution is weighed against a longer one at a better setting.
 //!
 //! The band for a frame time T of M refreshes of the model's display (so that a frame started
 //! at a refresh is handed over before the refresh T later, with `slack` of T kept free for
@@ -168,8 +171,9 @@ impl PerceptualParams {
 pub struct Prospect {
     /// The frame time, ms.
     pub frame_ms: f64,
-    /// Where on the ladder the predictive controller would settle with this target, or
-    /// `None` when even the cheapest point is predicted not to fit (or before any frame).
+    /// Where on the ladder the predictive controller would settle with this target (below 0:
+    /// the cheapest point at lower resolution), or `None` when even its lowest position is
+    /// predicted not to fit (or before any frame).
     pub position: Option<f64>,
     /// The model's utility there (higher is better), `None` with no position.
     pub utility: Option<f64>,

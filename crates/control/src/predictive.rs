@@ -42,16 +42,20 @@
 //! With a calibrated [`Ladder`] (option `ladder=PATH`, see [`crate::ladder`]) step 4 moves
 //! along the ladder's Pareto front instead of the knob order: a raise takes the best point
 //! above the current one (lowest calibrated FLIP) predicted to fit the target, a cut the best
-//! point below it that fits (the cheapest point if none does). Each point's time is still
-//! predicted from the measured rays of the current view, so S, R and scale are chosen
-//! together by what looks best for the time the frame may take.
+//! point below it that fits. Below the cheapest point the ladder goes on at lower resolution
+//! ([`LADDER_FLOOR`]): its cheapest point with the scale falling to the bounds' lowest, so
+//! a view dearer than the calibration's still gets a frame in the band (a ladder calibrated
+//! on another scene or machine often starts too high; a cut then stayed at its cheapest point
+//! over the band). Each point's time is still predicted from the measured rays of the current
+//! view, so S, R and scale are chosen together by what looks best for the time the frame may
+//! take.
 
 use crate::band::{Band, Position};
 use crate::controller::{Controller, Setup, parse_option, within};
 use crate::cost_model::{CostModel, CostParams, Fit};
 use crate::decision::{Action, Decision, Reason};
 use crate::error::ConfigError;
-use crate::ladder::Ladder;
+use crate::ladder::{LADDER_FLOOR, Ladder};
 use crate::quality::{Knob, KnobOrder, Quality};
 use crate::ray_model::{DEFAULT_DECAY, RayModel};
 use crate::report::{FrameReport, ReportError};
@@ -538,10 +542,24 @@ impl Predictive {
 
     /// The quality at position `u` along the ladder: point `i` at `u = i`, and between
     /// points i and i + 1 each knob interpolated linearly (R rounded), so the controller can
-    /// land on the target between two calibrated points. Clamped into the bounds.
+    /// land on the target between two calibrated points; below point 0, down to
+    /// [`LADDER_FLOOR`], point 0 at a resolution scale falling linearly to the bounds'
+    /// lowest. Clamped into the bounds.
     pub fn ladder_quality(&self, ladder: &Ladder, u: f64) -> Quality {
         let last = ladder.points.len() - 1;
-        let u = u.clamp(0.0, last as f64);
+        let u = u.clamp(LADDER_FLOOR, last as f64);
+        if u < 0.0 {
+            let cheapest = ladder.points[0];
+            let scale = f64::from(cheapest.scale);
+            let lowest = f64::from(self.setup.bounds.scale_min).min(scale);
+            let t = u / LADDER_FLOOR;
+            let q = Quality::new(
+                cheapest.spp,
+                cheapest.depth,
+                (scale + t * (lowest - scale)) as f32,
+            );
+            return self.setup.bounds.clamp(q);
+        }
         let i = (u.floor() as usize).min(last);
         let (a, b) = (ladder.points[i], ladder.points[(i + 1).min(last)]);
         let t = u - i as f64;
@@ -556,9 +574,9 @@ impl Predictive {
 
     /// The highest ladder position for which `fits` holds, moving one way only: a raise
     /// searches above the current position (staying put if nothing there fits), a cut below
-    /// it (the cheapest point if nothing fits). Off the ladder (the starting quality), the
-    /// whole ladder is searched. Whole points are tried from the top down; the segment above
-    /// the best one is then bisected.
+    /// it, down to [`LADDER_FLOOR`] (there if nothing fits). Off the ladder (the starting
+    /// quality), the whole ladder is searched. Whole positions are tried from the top down;
+    /// the segment above the best one is then bisected.
     fn best_on_ladder(
         &self,
         ladder: &Ladder,
@@ -567,16 +585,15 @@ impl Predictive {
     ) -> f64 {
         let top = (ladder.points.len() - 1) as f64;
         let (lo, hi) = match (self.ladder_pos, raising) {
-            (None, _) => (0.0, top),
+            (None, _) => (LADDER_FLOOR, top),
             (Some(u), true) => (u, top),
-            (Some(u), false) => (0.0, u),
+            (Some(u), false) => (LADDER_FLOOR, u),
         };
         self.search_ladder(ladder, fits, (lo, hi), raising)
     }
 
-    /// The highest position in `lo..=hi` for which `fits` holds: whole points from the top
-    /// down, then the segment above the best one bisected. When nothing fits: `lo` on a raise,
-    /// 0 on a cut.
+    /// The highest position in `lo..=hi` for which `fits` holds: whole positions from the
+    /// top down, then the segment above the best one bisected. When nothing fits: `lo`.
     fn search_ladder(
         &self,
         ladder: &Ladder,
@@ -585,14 +602,14 @@ impl Predictive {
         raising: bool,
     ) -> f64 {
         let at = |u: f64| fits(&self.ladder_quality(ladder, u));
-        let whole = (lo.ceil() as usize..=hi.floor() as usize)
+        let whole = (lo.ceil() as i64..=hi.floor() as i64)
             .rev()
             .map(|i| i as f64)
             .find(|&u| at(u));
         let (mut ok, mut bad) = match whole {
             Some(u) => (u, (u + 1.0).min(hi)),
             None if raising => (lo, (lo.floor() + 1.0).min(hi)),
-            None => return 0.0,
+            None => return lo,
         };
         if bad > ok && at(bad) {
             return bad;
@@ -610,17 +627,17 @@ impl Predictive {
 
     /// The highest position on the ladder predicted to take at most `target_ms` on the current
     /// view (no limit on the raise), or `None` before the first frame, without a ladder, or
-    /// when even its cheapest point is predicted to take longer: where this controller would
-    /// settle if `target_ms` were its target. The `perceptual` controller asks it for every
-    /// frame time it considers.
+    /// when even its lowest position ([`LADDER_FLOOR`]) is predicted to take longer: where
+    /// this controller would settle if `target_ms` were its target. The `perceptual`
+    /// controller asks it for every frame time it considers.
     pub fn ladder_position_within(&self, target_ms: f64) -> Option<f64> {
         let ladder = self.params.ladder.as_ref()?;
         let fits = |q: &Quality| self.predict_ms(q).is_some_and(|t| t <= target_ms);
-        if !fits(&self.ladder_quality(ladder, 0.0)) {
+        if !fits(&self.ladder_quality(ladder, LADDER_FLOOR)) {
             return None;
         }
         let top = (ladder.points.len() - 1) as f64;
-        Some(self.search_ladder(ladder, fits, (0.0, top), true))
+        Some(self.search_ladder(ladder, fits, (LADDER_FLOOR, top), true))
     }
 
     /// The band in use.

@@ -1,10 +1,12 @@
 //! `predictive` with a calibrated ladder on the simulated corridor: it holds the band like
 //! the default knob order does, and only ever delivers qualities on the ladder (its points or
-//! between two neighbours).
+//! between two neighbours), or below its cheapest point at lower resolution when even that
+//! is too dear.
 
-use steadyray_control::ladder::{Ladder, LadderPoint, Reference};
+use steadyray_control::ladder::{LADDER_FLOOR, Ladder, LadderPoint, Reference};
 use steadyray_control::metrics::summarize;
-use steadyray_control::simulate::{RendererModel, run};
+use steadyray_control::predictive::{Predictive, PredictiveParams};
+use steadyray_control::simulate::{LoadProfile, RendererModel, corridor_load, run};
 use steadyray_control::{
     Band, Bounds, ConfigError, OptionFiles, Quality, Setup, from_name, from_name_with,
 };
@@ -141,4 +143,41 @@ fn a_missing_or_bad_ladder_is_a_clear_error() {
     // Without a way to read files the library refuses the option and says what to do.
     let err = from_name("predictive", setup(), missing).unwrap_err();
     assert!(err.to_string().contains("from_name_with"), "{err}");
+}
+
+#[test]
+fn a_ladder_whose_cheapest_point_is_too_dear_goes_on_at_lower_resolution() {
+    // A ladder calibrated where frames were cheaper: its cheapest point, S 1, R 4 at full
+    // scale, takes 37 ms on this view, about twice the top of the paper's band.
+    let mut dear = ladder();
+    dear.points.drain(..5);
+    let cheapest = dear.points[0].quality();
+    let mut model = RendererModel::corridor(720)
+        .with_profile(LoadProfile::Constant(corridor_load(std::f64::consts::PI)));
+    let load = model.profile.load(0);
+    model.ns_per_ray *= 36.0 / (model.ideal_ms(&cheapest, &load) - model.fixed_ms);
+    let full_ms = model.ideal_ms(&cheapest, &load);
+    assert!((full_ms - 37.0).abs() < 1e-6, "{full_ms}");
+    let band = Band::new(15.0, 20.0).unwrap();
+    let b = Bounds::default();
+    let mut params = PredictiveParams::default();
+    params.ladder = Some(dear.clone());
+    let setup = Setup::new(band, b, b.max_quality()).unwrap();
+    let mut c = Predictive::new(setup, params).unwrap();
+    let records = run(&mut c, &model, 200 + WARM_UP);
+    let counted = &records[WARM_UP..];
+    for r in counted {
+        let q = r.quality;
+        assert_eq!((q.spp, q.depth), (cheapest.spp, cheapest.depth), "{q}");
+        assert!(q.scale < cheapest.scale && q.scale >= b.scale_min, "{q}");
+    }
+    let summary = summarize(counted, band, b.max_quality(), Some(&[]));
+    assert!(summary.ok_pct >= 95.0, "{summary:?}");
+    // The lowest position is the cheapest point at the bounds' lowest scale.
+    assert_eq!(
+        c.ladder_quality(&dear, LADDER_FLOOR),
+        Quality::new(cheapest.spp, cheapest.depth, b.scale_min)
+    );
+    assert!(c.ladder_position_within(20.0).unwrap() < 0.0);
+    assert_eq!(c.ladder_position_within(1.0), None, "nothing fits");
 }

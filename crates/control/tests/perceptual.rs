@@ -365,3 +365,34 @@ fn measured_costs_move_the_bands_and_keep_what_it_learned() {
     assert!(c.set_display_costs(nan).is_err());
     assert_eq!(c.band(), band);
 }
+
+#[test]
+fn fast_motion_gets_one_refresh_below_the_shipped_ladders_cheapest_point() {
+    // A view on which the shipped ladder's cheapest point takes 20 ms, over the band of one
+    // refresh (about 11.5 to 14.8 ms at 60 Hz): one refresh is reached at lower resolution.
+    let setup = Setup::new(Band::PAPER, Bounds::default(), Quality::new(1.0, 4, 1.0)).unwrap();
+    let mut c = Perceptual::new(setup, PerceptualParams::default()).unwrap();
+    let cheapest = c.model().ladder.points[0].quality();
+    let shortest = c.model().frame_times_ms[0];
+    let fastest = *c.model().speeds_deg_s.last().unwrap();
+    let probe = renderer_at(Vec::new(), 1.0);
+    let load = probe.model().profile.load(0);
+    let per_ns = probe.model().ideal_ms(&cheapest, &load) - probe.model().fixed_ms;
+    let ns_per_ray = (20.0 - probe.model().fixed_ms) / per_ns;
+    let speeds = vec![fastest; 240];
+    let steps = run_on(&mut c, &speeds, renderer_at(speeds.clone(), ns_per_ray));
+    let settled = &steps[60..];
+    assert!(
+        settled.iter().all(|s| s.target_ms == shortest),
+        "{:?}",
+        switches(&steps)
+    );
+    assert!(settled.iter().all(|s| s.quality.scale < cheapest.scale));
+    let band = c.band();
+    let in_band = settled.iter().filter(|s| band.contains(s.tp_ms)).count();
+    assert!(
+        in_band as f64 >= 0.9 * settled.len() as f64,
+        "{in_band} of {} in {band:?}",
+        settled.len()
+    );
+}
