@@ -41,9 +41,9 @@
 //!
 //! Between grid values the model interpolates linearly in speed and in the ladder position
 //! (as the `predictive` controller moves between ladder points), and holds the end values
-//! beyond the grid's speeds and above the top point. Below the cheapest point, where the
-//! controller goes on at lower resolution ([`crate::ladder::LADDER_FLOOR`]), the score
-//! falls by the row's mean gain per point.
+//! beyond the grid's speeds. Below the cheapest point, where the controller goes on at lower
+//! resolution ([`crate::ladder::LADDER_FLOOR`]) and no stimulus was shown,
+//! [`MotionModel::utility_below`] extrapolates by the rays saved.
 //!
 //! # The shipped default
 //!
@@ -55,7 +55,7 @@
 //! only each scene's own ordering of the frame times at each speed. How it was made, and how
 //! to make it again: `docs/default-motion-model.md`.
 
-use crate::ladder::{LADDER_FLOOR, Ladder};
+use crate::ladder::Ladder;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -269,23 +269,11 @@ impl MotionModel {
     }
 
     /// The score at grid speed `i`, frame time `j` and ladder position `u` (linear between
-    /// points, held beyond the top point). Below point 0, down to [`LADDER_FLOOR`] (the
-    /// cheapest point at lower resolution, which no stimulus showed), the utility falls
-    /// from point 0's by the row's mean gain per point (none when the row does not rise), so
-    /// that position is never taken for better than the cheapest point measured.
+    /// points, clamped to the ladder).
     fn at_position(&self, i: usize, j: usize, u: f64) -> f64 {
         let cells = &self.scores[i][j];
         let last = cells.len() - 1;
-        if u < 0.0 {
-            let sign = self.metric.sign();
-            let gain = if last > 0 {
-                (sign * (cells[last] - cells[0]) / last as f64).max(0.0)
-            } else {
-                0.0
-            };
-            return cells[0] + sign * gain * u.max(LADDER_FLOOR);
-        }
-        let u = u.min(last as f64);
+        let u = u.clamp(0.0, last as f64);
         let k = (u.floor() as usize).min(last);
         let t = u - k as f64;
         cells[k] + t * (cells[(k + 1).min(last)] - cells[k])
@@ -311,6 +299,27 @@ impl MotionModel {
     /// The score as a utility: higher is better whatever the metric.
     pub fn utility(&self, speed_deg_s: f64, j: usize, u: f64) -> f64 {
         self.metric.sign() * self.score(speed_deg_s, j, u)
+    }
+
+    /// The utility of frames shown for `frame_times_ms[j]` at `speed_deg_s` at a setting
+    /// below the ladder's cheapest point that traces `cost_ratio` (in (0, 1]) of its rays
+    /// (the cheapest point at lower resolution), which no stimulus showed: point 0's utility
+    /// less the ladder's mean gain per e-fold of rays (from its cheapest to its top point, by
+    /// their calibrated rays; none when the row does not rise) for each e-fold saved. So a
+    /// quarter of the pixels costs what the ladder gains over a fourfold rise in rays, and
+    /// such a setting is never taken for better than the cheapest point measured.
+    pub fn utility_below(&self, speed_deg_s: f64, j: usize, cost_ratio: f64) -> f64 {
+        let at = |u: f64| self.utility(speed_deg_s, j, u);
+        let points = &self.ladder.points;
+        let top = points.len() - 1;
+        let span = (points[top].rays / points[0].rays).ln();
+        let gain = if span > 0.0 && span.is_finite() {
+            ((at(top as f64) - at(0.0)) / span).max(0.0)
+        } else {
+            0.0
+        };
+        let saved = -cost_ratio.clamp(f64::MIN_POSITIVE, 1.0).ln();
+        at(0.0) - gain * saved
     }
 
     /// The spread of the scores over the whole table (highest minus lowest): the scale
@@ -393,27 +402,33 @@ mod tests {
     }
 
     #[test]
-    fn below_the_cheapest_point_the_utility_falls_by_the_rows_mean_gain() {
+    fn below_the_cheapest_point_the_utility_falls_by_the_gain_per_e_fold_of_rays() {
         let m = model();
-        // JOD, rising 2 a point: half a point below costs 1, the floor 2, no further.
-        assert_eq!(m.score(0.0, 0, -0.5), 5.0);
-        assert_eq!(m.score(0.0, 0, LADDER_FLOOR), 4.0);
-        assert_eq!(m.score(0.0, 0, -7.0), 4.0);
-        // Displayed FLIP (lower is better), falling 0.02 a point: the floor scores 0.02
-        // worse than the cheapest point.
+        // JOD rising 2 over the ladder's fourfold rays: half the rays cost 1, a quarter 2.
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        assert!(close(m.utility_below(0.0, 0, 1.0), 6.0));
+        assert!(close(m.utility_below(0.0, 0, 0.5), 5.0));
+        assert!(close(m.utility_below(0.0, 0, 0.25), 4.0));
+        assert!(
+            close(m.utility_below(10.0, 1, 0.25), 2.5),
+            "at speed 10 the row runs 4.5 to 6.5"
+        );
+        // Displayed FLIP (lower is better) falling 0.02 over the ladder: a quarter of the
+        // rays scores 0.02 worse than the cheapest point.
         let flip = MotionModel {
             metric: Metric::DisplayedFlip,
             scores: vec![vec![vec![0.06, 0.04]; 2]; 2],
             ..m.clone()
         };
-        assert!((flip.score(0.0, 0, LADDER_FLOOR) - 0.08).abs() < 1e-12);
-        // A row that does not rise (calibration noise) gives the floor point 0's score,
-        // never a better one.
+        assert!(close(flip.utility_below(0.0, 0, 0.25), -0.08));
+        // A row that does not rise (calibration noise) gives point 0's utility, never a
+        // better one; the ladder's own positions below 0 are held at point 0.
         let flat = MotionModel {
             scores: vec![vec![vec![6.0, 5.5]; 2]; 2],
             ..m
         };
-        assert_eq!(flat.score(0.0, 0, LADDER_FLOOR), 6.0);
+        assert!(close(flat.utility_below(0.0, 0, 0.25), 6.0));
+        assert_eq!(flat.score(0.0, 0, -1.0), 6.0);
     }
 
     #[test]

@@ -24,9 +24,9 @@
 //!    target time) after the last change, so the rate does not flicker between two refresh
 //!    multiples. A target none of whose settings fits any more (the model's cheapest point
 //!    at the lowest resolution scale, [`crate::ladder::LADDER_FLOOR`], predicted over its
-//!    band) gives way at once. Below the cheapest point the model's score falls by its mean
-//!    gain per point ([`MotionModel::score`]), so a shorter frame time reached only at lower
-//!    resolution is weighed against a longer one at a better setting.
+//!    band) gives way at once. Below the cheapest point the model's utility is extrapolated
+//!    by the rays saved ([`MotionModel::utility_below`]), so a shorter frame time reached
+//!    only at lower resolution is weighed against a longer one at a better setting.
 //!
 //! The band for a frame time T of M refreshes of the model's display (so that a frame started
 //! at a refresh is handed over before the refresh T later, with `slack` of T kept free for
@@ -332,10 +332,23 @@ impl Perceptual {
                 Prospect {
                     frame_ms: self.model.frame_times_ms[j],
                     position,
-                    utility: position.map(|u| self.model.utility(speed_deg_s, j, u)),
+                    utility: position.map(|u| self.utility_at(speed_deg_s, j, u)),
                 }
             })
             .collect()
+    }
+
+    /// The model's utility at ladder position `u` for frame time `j`: below the cheapest
+    /// point, by the rays its lower resolution saves ([`MotionModel::utility_below`]).
+    fn utility_at(&self, speed_deg_s: f64, j: usize, u: f64) -> f64 {
+        if u >= 0.0 {
+            return self.model.utility(speed_deg_s, j, u);
+        }
+        let ladder = &self.model.ladder;
+        let cheapest = f64::from(ladder.points[0].scale);
+        let scale = f64::from(self.inner.ladder_quality(ladder, u).scale);
+        let cost_ratio = (scale / cheapest).powi(2);
+        self.model.utility_below(speed_deg_s, j, cost_ratio)
     }
 
     /// The frame time to target next, from the prospects: the best, if it beats the current

@@ -170,4 +170,33 @@ mod tests {
         assert_ne!(renderer_changed, rendered);
         assert_eq!(renderer_changed, revision_in(dir, &[]));
     }
+
+    #[test]
+    fn the_reference_sources_hold_every_crate_the_renderers_build_on() {
+        // A crate the renderers depend on that the list misses would change the pictures
+        // without moving the revision they are kept by, and a stale reference be reused.
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let listed: Vec<&str> = REFERENCE_SOURCES
+            .iter()
+            .filter_map(|p| p.strip_prefix("crates/"))
+            .filter(|c| !c.contains('/'))
+            .collect();
+        assert!(listed.contains(&"render-cpu"), "{listed:?}");
+        for dir in &listed {
+            let path = root.join("crates").join(dir).join("Cargo.toml");
+            let text = std::fs::read_to_string(&path).unwrap();
+            let manifest: toml::Table = text.parse().unwrap();
+            let Some(deps) = manifest.get("dependencies").and_then(|d| d.as_table()) else {
+                continue;
+            };
+            for name in deps.keys() {
+                if let Some(own) = name.strip_prefix("steadyray-") {
+                    assert!(
+                        listed.contains(&own),
+                        "crates/{dir} depends on {name}: add crates/{own} to REFERENCE_SOURCES"
+                    );
+                }
+            }
+        }
+    }
 }
