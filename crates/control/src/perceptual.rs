@@ -26,7 +26,9 @@
 //!    at the lowest resolution scale, [`crate::ladder::LADDER_FLOOR`], predicted over its
 //!    band) gives way at once. Below the cheapest point the model's utility is extrapolated
 //!    by the rays saved ([`MotionModel::utility_below`]), so a shorter frame time reached
-//!    only at lower resolution is weighed against a longer one at a better setting.
+//!    only at lower resolution is weighed against a longer one at a better setting; only
+//!    when the model's stimuli were shown as the frames are, warped or not
+//!    ([`Perceptual::trusts_below_ladder`]), else such a frame time counts as not fitting.
 //!
 //! The band for a frame time T of M refreshes of the model's display (so that a frame started
 //! at a refresh is handed over before the refresh T later, with `slack` of T kept free for
@@ -321,14 +323,19 @@ impl Perceptual {
     }
 
     /// What every frame time of the model promises at `speed_deg_s`, from the current
-    /// view's measurements.
+    /// view's measurements. Positions below the ladder's cheapest point count only when the
+    /// model's stimuli were shown as the frames are ([`Perceptual::trusts_below_ladder`]).
     pub fn prospects(&self, speed_deg_s: f64) -> Vec<Prospect> {
+        let below = self.trusts_below_ladder();
         self.bands
             .iter()
             .enumerate()
             .map(|(j, band)| {
                 let aim = self.inner.aim_in(*band);
-                let position = self.inner.ladder_position_within(aim.target_ms);
+                let position = self
+                    .inner
+                    .ladder_position_within(aim.target_ms)
+                    .filter(|&u| below || u >= 0.0);
                 Prospect {
                     frame_ms: self.model.frame_times_ms[j],
                     position,
@@ -336,6 +343,18 @@ impl Perceptual {
                 }
             })
             .collect()
+    }
+
+    /// Whether a frame time reached only below the ladder's cheapest point may be chosen:
+    /// when the model's stimuli were shown as the frames are, warped between frames or not
+    /// ([`MotionModel::warped`] against a told warp cost above 0). A plain model with warped
+    /// refreshes overstates what long frames cost (`docs/temporal.md`: at 32 °/s three
+    /// refreshes a frame, 0.091 displayed FLIP over one held, 0.029 warped); trading
+    /// resolution below the ladder for shorter frames on its word took `perceptual` with the
+    /// history to one refresh at a third of the pixels on meshes, 0.3 JOD under its runs
+    /// that could not (`docs/results/scene-suite.md`).
+    pub fn trusts_below_ladder(&self) -> bool {
+        self.model.warped == (self.shaping.warp_ms > 0.0)
     }
 
     /// The model's utility at ladder position `u` for frame time `j`: below the cheapest

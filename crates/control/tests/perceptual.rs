@@ -395,4 +395,17 @@ fn fast_motion_gets_one_refresh_below_the_shipped_ladders_cheapest_point() {
         "{in_band} of {} in {band:?}",
         settled.len()
     );
+    // With warped refreshes the shipped model (of frames held, not warped) is not trusted
+    // below its ladder: the same motion keeps a longer frame time.
+    assert!(c.trusts_below_ladder());
+    let mut params = PerceptualParams::default();
+    params.warp_ms = 2.0;
+    let mut warped = Perceptual::new(setup, params).unwrap();
+    assert!(!warped.trusts_below_ladder());
+    let steps = run_on(
+        &mut warped,
+        &speeds,
+        renderer_at(speeds.clone(), ns_per_ray),
+    );
+    assert!(steps[60..].iter().all(|s| s.target_ms > shortest));
 }
