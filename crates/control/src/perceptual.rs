@@ -351,8 +351,8 @@ impl Perceptual {
     /// refreshes overstates what long frames cost (`docs/temporal.md`: at 32 °/s three
     /// refreshes a frame, 0.091 displayed FLIP over one held, 0.029 warped); trading
     /// resolution below the ladder for shorter frames on its word took `perceptual` with the
-    /// history to one refresh at a third of the pixels on meshes, 0.3 JOD under its runs
-    /// that could not (`docs/results/scene-suite.md`).
+    /// history to one refresh at a third of the pixels on meshes, where it had kept two
+    /// (`docs/results/scene-suite.md`).
     pub fn trusts_below_ladder(&self) -> bool {
         self.model.warped == (self.shaping.warp_ms > 0.0)
     }
