@@ -549,15 +549,11 @@ impl Predictive {
         let last = ladder.points.len() - 1;
         let u = u.clamp(LADDER_FLOOR, last as f64);
         if u < 0.0 {
-            let cheapest = ladder.points[0];
-            let scale = f64::from(cheapest.scale);
-            let lowest = f64::from(self.setup.bounds.scale_min).min(scale);
+            let cheapest = ladder.points[0].quality();
+            let scale = cheapest.get(Knob::Scale);
+            let lowest = self.setup.bounds.range(Knob::Scale).0.min(scale);
             let t = u / LADDER_FLOOR;
-            let q = Quality::new(
-                cheapest.spp,
-                cheapest.depth,
-                (scale + t * (lowest - scale)) as f32,
-            );
+            let q = cheapest.with(Knob::Scale, scale + t * (lowest - scale));
             return self.setup.bounds.clamp(q);
         }
         let i = (u.floor() as usize).min(last);
