@@ -268,6 +268,41 @@ impl MotionModel {
         Ok(())
     }
 
+    /// The model without the ladder points that it scores no better than a cheaper point
+    /// in every cell (at each speed and frame time): such a point costs more rays for a
+    /// picture the viewer is not shown to prefer anywhere, yet `perceptual`'s inner
+    /// controller would climb to it (and through the positions between it and its
+    /// neighbours) whenever it fits. A ladder point ahead of cheaper ones on a still
+    /// picture (its calibrated FLIP) can lose to them once the stimuli move: the shipped
+    /// model's second point, S = 1.5 at half scale, scores worse than S = 1 at half scale in
+    /// every cell. The cheapest point is always kept.
+    pub fn without_dominated_points(mut self) -> Self {
+        let sign = self.metric.sign();
+        let cells = |k: usize| -> Vec<f64> {
+            self.scores
+                .iter()
+                .flatten()
+                .map(|points| sign * points[k])
+                .collect()
+        };
+        let mut kept: Vec<usize> = Vec::new();
+        for k in 0..self.ladder.points.len() {
+            let mine = cells(k);
+            let dominated = kept.iter().any(|&c| {
+                let cheaper = cells(c);
+                mine.iter().zip(&cheaper).all(|(m, c)| m <= c)
+            });
+            if !dominated {
+                kept.push(k);
+            }
+        }
+        self.ladder.points = kept.iter().map(|&k| self.ladder.points[k]).collect();
+        for points in self.scores.iter_mut().flatten() {
+            *points = kept.iter().map(|&k| points[k]).collect();
+        }
+        self
+    }
+
     /// The score at grid speed `i`, frame time `j` and ladder position `u` (linear between
     /// points, clamped to the ladder).
     fn at_position(&self, i: usize, j: usize, u: f64) -> f64 {
@@ -495,6 +530,40 @@ mod tests {
         let mut bad = b;
         bad.scores[0][0].pop();
         refused(bad, "scores must be");
+    }
+
+    #[test]
+    fn points_scored_no_better_than_a_cheaper_one_everywhere_are_dropped() {
+        let mut m = model();
+        let mut middle = m.ladder.points[0];
+        middle.spp = 2.0;
+        middle.rays = 2e6;
+        middle.flip = 0.15;
+        m.ladder.points.insert(1, middle);
+        // JOD (higher is better): the middle point is never above the cheapest (ties
+        // count as no better); the top point is above it in every cell.
+        m.scores = vec![
+            vec![vec![6.0, 6.0, 8.0], vec![6.0, 5.5, 8.0]],
+            vec![vec![5.0, 4.0, 7.0], vec![3.0, 3.0, 5.0]],
+        ];
+        m.validate().unwrap();
+        let pruned = m.clone().without_dominated_points();
+        pruned.validate().unwrap();
+        let spp: Vec<f32> = pruned.ladder.points.iter().map(|p| p.spp).collect();
+        assert_eq!(spp, [1.0, 4.0]);
+        assert_eq!(pruned.scores, model().scores);
+        // Better than the cheapest in one cell is enough to stay.
+        m.scores[1][1][1] = 3.5;
+        assert_eq!(m.without_dominated_points().ladder.points.len(), 3);
+    }
+
+    #[test]
+    fn the_shipped_models_second_point_is_dominated_once_the_stimuli_move() {
+        let shipped = MotionModel::shipped().unwrap();
+        let pruned = shipped.clone().without_dominated_points();
+        let mut expected = shipped.ladder.points.clone();
+        expected.remove(1);
+        assert_eq!(pruned.ladder.points, expected);
     }
 
     #[test]
