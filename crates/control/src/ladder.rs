@@ -41,14 +41,6 @@ use serde::{Deserialize, Serialize};
 /// calibrated on another scene or machine often starts too high for it.
 pub const LADDER_FLOOR: f64 = -1.0;
 
-/// How far positions go above a ladder's top point (point k at position k): up to one more,
-/// where the top point's S has risen geometrically to the controller's highest S, R and the
-/// scale staying the top point's. So a view cheaper than the calibration's still fills its
-/// band with eye rays, as `predictive` without a ladder does: a ladder calibrated on a
-/// dearer scene or a slower machine often ends too low (the shipped motion model's ladder
-/// tops out at S = 2, where `predictive` on the corridor's cheap views runs S = 3).
-pub const LADDER_ABOVE: f64 = 1.0;
-
 /// One setting on the ladder, with what calibration measured for it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LadderPoint {

@@ -47,7 +47,9 @@
 //!
 //! Out of the box (no `model`) it uses the model that ships with the crate,
 //! [`MotionModel::shipped`]: one generic ladder and the mean of models calibrated on scenes
-//! other than the scene suite's (`docs/default-motion-model.md`). A model calibrated on the
+//! other than the scene suite's (`docs/default-motion-model.md`). Whatever the model, the
+//! ladder points it scores no better than a cheaper one at every speed and frame time are
+//! left out ([`MotionModel::without_dominated_points`]). A model calibrated on the
 //! scene itself (`calibrate`, then `calibrate --motion`) may choose better; the suite
 //! measures how much (`perceptual` against `perceptual-scene`, `docs/scene-suite.md`).
 //!

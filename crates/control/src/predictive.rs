@@ -46,8 +46,7 @@
 //! ([`LADDER_FLOOR`]): its cheapest point with the scale falling to the bounds' lowest, so
 //! a view dearer than the calibration's still gets a frame in the band (a ladder calibrated
 //! on another scene or machine often starts too high; a cut then stayed at its cheapest point
-//! over the band). Above the top point it goes on with more eye rays ([`LADDER_ABOVE`]),
-//! so a view cheaper than the calibration's still fills the band. Each point's time is still predicted from the measured rays of the current
+//! over the band). Each point's time is still predicted from the measured rays of the current
 //! view, so S, R and scale are chosen together by what looks best for the time the frame may
 //! take.
 
@@ -56,7 +55,7 @@ use crate::controller::{Controller, Setup, parse_option, within};
 use crate::cost_model::{CostModel, CostParams, Fit};
 use crate::decision::{Action, Decision, Reason};
 use crate::error::ConfigError;
-use crate::ladder::{LADDER_ABOVE, LADDER_FLOOR, Ladder};
+use crate::ladder::{LADDER_FLOOR, Ladder};
 use crate::quality::{Knob, KnobOrder, Quality};
 use crate::ray_model::{DEFAULT_DECAY, RayModel};
 use crate::report::{FrameReport, ReportError};
@@ -545,19 +544,10 @@ impl Predictive {
     /// points i and i + 1 each knob interpolated linearly (R rounded), so the controller can
     /// land on the target between two calibrated points; below point 0, down to
     /// [`LADDER_FLOOR`], point 0 at a resolution scale falling linearly to the bounds'
-    /// lowest; above the top point, up to [`LADDER_ABOVE`] more, the top point at an S
-    /// rising geometrically to the bounds' highest. Clamped into the bounds.
+    /// lowest. Clamped into the bounds.
     pub fn ladder_quality(&self, ladder: &Ladder, u: f64) -> Quality {
         let last = ladder.points.len() - 1;
-        let u = u.clamp(LADDER_FLOOR, Self::ladder_top(ladder));
-        if u > last as f64 {
-            let top = ladder.points[last].quality();
-            let spp = top.get(Knob::Spp);
-            let highest = self.setup.bounds.range(Knob::Spp).1.max(spp);
-            let t = (u - last as f64) / LADDER_ABOVE;
-            let q = top.with(Knob::Spp, spp * (highest / spp).powf(t));
-            return self.setup.bounds.clamp(q);
-        }
+        let u = u.clamp(LADDER_FLOOR, last as f64);
         if u < 0.0 {
             let cheapest = ladder.points[0].quality();
             let scale = cheapest.get(Knob::Scale);
@@ -589,7 +579,7 @@ impl Predictive {
         fits: impl Fn(&Quality) -> bool,
         raising: bool,
     ) -> f64 {
-        let top = Self::ladder_top(ladder);
+        let top = (ladder.points.len() - 1) as f64;
         let (lo, hi) = match (self.ladder_pos, raising) {
             (None, _) => (LADDER_FLOOR, top),
             (Some(u), true) => (u, top),
@@ -642,13 +632,8 @@ impl Predictive {
         if !fits(&self.ladder_quality(ladder, LADDER_FLOOR)) {
             return None;
         }
-        let top = Self::ladder_top(ladder);
+        let top = (ladder.points.len() - 1) as f64;
         Some(self.search_ladder(ladder, fits, (LADDER_FLOOR, top), true))
-    }
-
-    /// The highest position along `ladder`: its top point's, plus [`LADDER_ABOVE`].
-    fn ladder_top(ladder: &Ladder) -> f64 {
-        (ladder.points.len() - 1) as f64 + LADDER_ABOVE
     }
 
     /// The band in use.
