@@ -278,21 +278,15 @@ impl MotionModel {
     /// every cell. The cheapest point is always kept.
     pub fn without_dominated_points(mut self) -> Self {
         let sign = self.metric.sign();
-        let cells = |k: usize| -> Vec<f64> {
+        let no_better = |k: usize, c: usize| {
             self.scores
                 .iter()
                 .flatten()
-                .map(|points| sign * points[k])
-                .collect()
+                .all(|points| sign * points[k] <= sign * points[c])
         };
         let mut kept: Vec<usize> = Vec::new();
         for k in 0..self.ladder.points.len() {
-            let mine = cells(k);
-            let dominated = kept.iter().any(|&c| {
-                let cheaper = cells(c);
-                mine.iter().zip(&cheaper).all(|(m, c)| m <= c)
-            });
-            if !dominated {
+            if !kept.iter().any(|&c| no_better(k, c)) {
                 kept.push(k);
             }
         }
