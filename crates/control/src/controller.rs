@@ -1,6 +1,7 @@
 //! The controller interface and the constructor that builds one by name.
 
 use crate::band::Band;
+use crate::budget::FrameBudget;
 use crate::decision::Decision;
 use crate::error::ConfigError;
 use crate::fixed::Fixed;
@@ -73,6 +74,14 @@ pub trait Controller: Send + fmt::Debug {
     /// chooses the frame rate itself (`perceptual`); `None` for one that holds the band it
     /// was given.
     fn target_frame_ms(&self) -> Option<f64> {
+        None
+    }
+
+    /// The time budget the next frame should be rendered within, for a renderer that takes
+    /// its eye samples a unit at a time ([`FrameBudget`]); `None` (every controller unless
+    /// asked: `predictive`'s and `perceptual`'s option `budget`) renders the planned
+    /// quality whole.
+    fn frame_budget(&self) -> Option<FrameBudget> {
         None
     }
 }

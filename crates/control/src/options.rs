@@ -99,6 +99,11 @@ pub const PREDICTIVE_SHARED: &[(&str, &str, &str)] = &[
         "inside the inner band, trade knobs to where the order settles for the view",
     ),
     (
+        "budget",
+        "false",
+        "hand each frame a time budget a progressive renderer keeps it in the band by",
+    ),
+    (
         "forgetting",
         "0.95",
         "the cost model's weight decay per frame, in (0, 1]",

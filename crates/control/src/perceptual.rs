@@ -59,6 +59,7 @@
 //! `predictive` but `ladder` (the ladder is the model's).
 
 use crate::band::Band;
+use crate::budget::FrameBudget;
 use crate::controller::{Controller, DisplayCosts, Setup, parse_option, within};
 use crate::decision::Decision;
 use crate::error::ConfigError;
@@ -451,6 +452,11 @@ impl Controller for Perceptual {
 
     fn target_frame_ms(&self) -> Option<f64> {
         Some(self.target_ms())
+    }
+
+    /// The inner `predictive`'s budget, for the band of the frame time chosen.
+    fn frame_budget(&self) -> Option<FrameBudget> {
+        self.inner.frame_budget()
     }
 
     /// The inner `predictive`'s decision (a new target frame time shows as a new band).

@@ -51,6 +51,7 @@
 //! take.
 
 use crate::band::{Band, Position};
+use crate::budget::{BASE_SHARE, FrameBudget};
 use crate::controller::{Controller, Setup, parse_option, within};
 use crate::cost_model::{CostModel, CostParams, Fit};
 use crate::decision::{Action, Decision, Reason};
@@ -88,6 +89,10 @@ pub const INNER_HALF: f64 = 0.12;
 /// On a noisy machine the inner band is at least this many robust standard deviations of
 /// the prediction errors on either side of the target ([`Predictive::aim`]).
 pub const NOISE_HALF: f64 = 2.0;
+/// With a frame budget, a raise leaves the first sample of every pixel this share of
+/// [`BASE_SHARE`]'s limit, which a held quality may fill: a quality raised to the limit
+/// itself was cut again on the next frame whose prediction came out a little higher.
+pub const BASE_RAISE: f64 = 0.9;
 /// Continuous knobs are found to this relative precision.
 const SEARCH_STEPS: u32 = 40;
 /// A trade ([`PredictiveParams::trades`]) counts S and scale as unchanged within this fraction.
@@ -127,6 +132,11 @@ pub struct PredictiveParams {
     /// `ladder`: a calibrated ladder file (`ladder.json`) to move along instead of `order`.
     /// Default none.
     pub ladder: Option<Ladder>,
+    /// `budget`: hand each frame a [`FrameBudget`] for the band
+    /// ([`FrameBudget::for_band`], filled up to the aim's target), so that a renderer
+    /// that takes its samples a unit at a time ends the frame in the band against its own
+    /// clock ([`crate::budget`]). Default false: the paper's per-frame control alone.
+    pub budget: bool,
 }
 
 impl Default for PredictiveParams {
@@ -142,6 +152,7 @@ impl Default for PredictiveParams {
             trades: true,
             cost: CostParams::default(),
             ladder: None,
+            budget: false,
         }
     }
 }
@@ -159,6 +170,7 @@ impl PredictiveParams {
             "trend" => self.trend = parse_option(key, value, within(0.0, 1.0))?,
             "measured_cut" => self.measured_cut = parse_option(key, value, |_| Ok(()))?,
             "trades" => self.trades = parse_option(key, value, |_| Ok(()))?,
+            "budget" => self.budget = parse_option(key, value, |_| Ok(()))?,
             "forgetting" => self.cost.forgetting = parse_option(key, value, within(0.01, 1.0))?,
             "outlier_k" => self.cost.outlier_k = parse_option(key, value, within(1.0, 1e6))?,
             "confirm" => self.cost.confirm = parse_option(key, value, within(1, 100))?,
@@ -391,7 +403,7 @@ impl Predictive {
         };
         let (low_ms, high_ms) = self.holding_range(aim);
         let raising = now < low_ms;
-        if !raising && now <= high_ms {
+        if !raising && now <= high_ms && self.base_fits(&self.quality, 1.0) {
             let trade = (p.trades && p.ladder.is_none())
                 .then(|| self.order_trade(load, aim.target_ms))
                 .flatten();
@@ -417,7 +429,9 @@ impl Predictive {
             f64::INFINITY
         };
         let fits = |q: &Quality| {
-            load.rays(q) <= ray_cap && self.predict_ms(q).is_some_and(|t| t <= target)
+            load.rays(q) <= ray_cap
+                && self.predict_ms(q).is_some_and(|t| t <= target)
+                && self.base_fits(q, if raising { BASE_RAISE } else { 1.0 })
         };
         let (quality, ladder_pos) = match &self.params.ladder {
             Some(ladder) => {
@@ -431,6 +445,19 @@ impl Predictive {
             ladder_pos,
             reason,
         }
+    }
+
+    /// Whether `q` leaves its frame's budget room to work in: without a budget always;
+    /// with one, when the first sample of every pixel at `q`'s depth and scale is predicted
+    /// to take at most `share` × [`BASE_SHARE`] of the time the frame must stop by (the
+    /// rest of `q`'s S is what the budget cuts or fills).
+    fn base_fits(&self, q: &Quality, share: f64) -> bool {
+        let Some(budget) = self.frame_budget() else {
+            return true;
+        };
+        let base = Quality { spp: 1.0, ..*q };
+        self.predict_ms(&base)
+            .is_some_and(|t| t <= share * BASE_SHARE * budget.stop_by_ms)
     }
 
     /// The predicted times the current quality is held for: `aim`'s inner band, but only
@@ -806,10 +833,16 @@ impl Controller for Predictive {
 
     fn observe(&mut self, report: &FrameReport) -> Result<Quality, ReportError> {
         report.check_rays()?;
-        let rays = report.total_rays() as f64;
+        let (rays, tp_ms) = (report.total_rays() as f64, report.tp_ms);
         let expected = self.cost.predict_ms(rays);
         self.surprise = 1.0;
-        let fit = self.cost.observe(rays, report.tp_ms);
+        // A budgeted frame's time is held by its budget and its rays vary instead; its
+        // first sample, at the same speed of the machine, pins the fixed cost the frame's
+        // time alone would let drift.
+        if let Some(first) = report.first_sample {
+            self.cost.observe(first.rays as f64, first.ms);
+        }
+        let fit = self.cost.observe(rays, tp_ms);
         // The aim follows the prediction errors, which only the cost model's `observe` moves:
         // one aim serves the whole decision.
         let aim = self.aim();
@@ -831,7 +864,7 @@ impl Controller for Predictive {
         // A model just refitted to the latest frames already explains them.
         let refitted = fit == Fit::Shifted;
         if let Some(e) = expected.filter(|_| !refitted && drift) {
-            self.surprise = (report.tp_ms / e).max(1.0);
+            self.surprise = (tp_ms / e).max(1.0);
         }
         self.update_load(report);
         // A surprise under which not even the lowest quality a cut may reach would fit is not
@@ -856,6 +889,14 @@ impl Controller for Predictive {
 
     fn set_band(&mut self, band: Band) {
         self.retarget(band);
+    }
+
+    fn frame_budget(&self) -> Option<FrameBudget> {
+        self.params.budget.then(|| {
+            let band = self.setup.band;
+            FrameBudget::for_band(band, self.aim().target_ms, self.setup.bounds.spp_max)
+                .expect("a valid band and bounds make a valid budget")
+        })
     }
 
     fn reset(&mut self) {
@@ -892,6 +933,7 @@ mod tests {
             pixels,
             quality: q,
             speed_deg_s: 0.0,
+            first_sample: None,
         }
     }
 

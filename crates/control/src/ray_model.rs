@@ -125,6 +125,7 @@ mod tests {
             pixels: 1000,
             quality: Quality::new(2.0, 2, 0.5),
             speed_deg_s: 0.0,
+            first_sample: None,
         }
     }
 

@@ -33,6 +33,23 @@ pub struct FrameReport {
     /// Only the `perceptual` controller reads it: it picks the frame rate from it.
     #[serde(default)]
     pub speed_deg_s: f64,
+    /// For a frame rendered within a time budget ([`crate::FrameBudget`]): its first
+    /// sample of every pixel, the part its quality fixed (`None` for a frame rendered
+    /// whole). The budget holds the whole frame's time and lets its rays vary instead, so
+    /// the frame's (rays, Tp) no longer show the cost of a ray; this part's still do, and
+    /// `predictive` fits its cost model on it.
+    #[serde(default)]
+    pub first_sample: Option<FirstSample>,
+}
+
+/// The rays and time of a budgeted frame's first sample of every pixel
+/// ([`FrameReport::first_sample`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FirstSample {
+    /// Rays traced: eye rays, deeper levels and shadow rays.
+    pub rays: u64,
+    /// Time from the frame's start to the end of the first sample, ms.
+    pub ms: f64,
 }
 
 /// Why a report was refused. A refused report changes nothing: every controller returns the
@@ -74,6 +91,7 @@ impl FrameReport {
             pixels,
             quality,
             speed_deg_s: 0.0,
+            first_sample: None,
         }
     }
 
@@ -119,6 +137,7 @@ mod tests {
             pixels: 100,
             quality: Quality::new(1.0, 1, 1.0),
             speed_deg_s: 0.0,
+            first_sample: None,
         }
     }
 

@@ -10,11 +10,13 @@
 //! Everything random comes from a seeded PCG generator that draws the same numbers every
 //! frame whatever the controller does, so runs are reproducible and comparable.
 
+use crate::budget::{FrameBudget, spp_of_units, units_for_spp};
 use crate::controller::Controller;
 use crate::metrics::FrameRecord;
 use crate::noise::{NoiseProcess, NoiseProfile};
 use crate::quality::Quality;
-use crate::report::FrameReport;
+use crate::report::{FirstSample, FrameReport};
+use std::cell::Cell;
 use std::f64::consts::TAU;
 
 /// The deepest level a simulated load describes.
@@ -339,6 +341,28 @@ impl RendererModel {
         self.fixed_ms + self.ns_per_ray * 1e-6 * total as f64 * load.cost_factor
     }
 
+    /// The quality a frame planned at `q` reaches within `budget` when the frame's times
+    /// are `factor` times the noise-free ones: its S as [`FrameBudget::run_units`] decides.
+    fn budgeted_quality(
+        &self,
+        budget: &FrameBudget,
+        load: &Load,
+        q: Quality,
+        factor: f64,
+    ) -> Quality {
+        let at = |spp: f32| self.ideal_ms(&Quality { spp, ..q }, load) * factor;
+        let units = Cell::new(0);
+        let done = budget.run_units(
+            units_for_spp(q.spp),
+            || at(spp_of_units(units.get())),
+            |batch| units.set(batch.end),
+        );
+        Quality {
+            spp: spp_of_units(done),
+            ..q
+        }
+    }
+
     fn pixels(&self, q: &Quality) -> u64 {
         let s = f64::from(q.scale);
         ((self.full_pixels as f64 * s * s).round() as u64).max(1)
@@ -438,11 +462,21 @@ impl SimRenderer {
     /// view's cost given by `load` instead of the profile: a path followed in time rather than
     /// frame by frame (e.g. [`corridor_load`] at the yaw of a time).
     pub fn render_load(&mut self, frame: usize, load: &Load, q: Quality) -> FrameReport {
+        self.render_within(frame, load, q, None)
+    }
+
+    /// [`SimRenderer::render_load`] within a frame's time `budget`, when given: the frame
+    /// takes its samples as a progressive renderer does ([`FrameBudget::run_units`]: the
+    /// first sample of every pixel, then units of pairs), each part costing its share of
+    /// the frame's rays at the frame's noise, and reports the S it reached.
+    pub fn render_within(
+        &mut self,
+        frame: usize,
+        load: &Load,
+        q: Quality,
+        budget: Option<&FrameBudget>,
+    ) -> FrameReport {
         let m = &self.model;
-        let eye = m.eye_rays(&q);
-        let (rays_per_depth, shadow_rays) = load.rays(eye, q.depth);
-        let total = rays_per_depth.iter().sum::<u64>() + shadow_rays;
-        let ideal = m.fixed_ms + m.ns_per_ray * 1e-6 * total as f64 * load.cost_factor;
         let noise = (1.0 + m.noise * self.rng.normal()).max(0.1);
         let spike_draw = self.rng.unit();
         let gap = self.rng.unit();
@@ -453,7 +487,26 @@ impl SimRenderer {
             .as_mut()
             .map_or(1.0, |n| n.factor(start - self.last_start_ms));
         self.last_start_ms = start;
-        let true_ms = ideal * noise * machine * if spike { m.spike_factor } else { 1.0 };
+        let factor = noise * machine * if spike { m.spike_factor } else { 1.0 };
+        let planned = q;
+        let q = match budget {
+            Some(budget) => m.budgeted_quality(budget, load, q, factor),
+            None => q,
+        };
+        let first_sample = budget.map(|_| {
+            let first = Quality {
+                spp: 1.0,
+                ..planned
+            };
+            let (rays, shadow) = load.rays(m.eye_rays(&first), first.depth);
+            FirstSample {
+                rays: rays.iter().sum::<u64>() + shadow,
+                ms: m.ideal_ms(&first, load) * factor,
+            }
+        });
+        let eye = m.eye_rays(&q);
+        let (rays_per_depth, shadow_rays) = load.rays(eye, q.depth);
+        let true_ms = m.ideal_ms(&q, load) * factor;
         let end = start + true_ms;
         let tp_ms = if m.timer_ms > 0.0 {
             ((end / m.timer_ms).floor() - (start / m.timer_ms).floor()) * m.timer_ms
@@ -470,6 +523,7 @@ impl SimRenderer {
             pixels: m.pixels(&q),
             quality: q,
             speed_deg_s: m.speed_at(frame),
+            first_sample,
         }
     }
 }
@@ -486,7 +540,9 @@ pub fn run(
     (0..frames)
         .map(|frame| {
             let q = controller.quality();
-            let report = renderer.render(frame, q);
+            let load = renderer.model.profile.load(frame);
+            let budget = controller.frame_budget();
+            let report = renderer.render_within(frame, &load, q, budget.as_ref());
             // A refused report leaves the controller unchanged; the record keeps the frame.
             let _ = controller.observe(&report);
             FrameRecord {

@@ -168,6 +168,7 @@ mod tests {
             pixels: 1,
             quality: q,
             speed_deg_s: 0.0,
+            first_sample: None,
         }
     }
 

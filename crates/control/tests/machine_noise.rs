@@ -4,9 +4,9 @@
 //! `--nocapture` to see the figures.
 
 use std::path::PathBuf;
-use steadyray_control::metrics::{RunSummary, summarize};
+use steadyray_control::metrics::{FrameRecord, RunSummary, summarize};
 use steadyray_control::noise::{NoiseProcess, NoiseProfile, fit_profile};
-use steadyray_control::simulate::{LoadProfile, RendererModel, corridor_load, run};
+use steadyray_control::simulate::{LoadProfile, RendererModel, SimRenderer, corridor_load, run};
 use steadyray_control::{Band, Bounds, Quality, Setup, aim_ceiling, from_name};
 
 const BAND: Band = Band::PAPER;
@@ -99,6 +99,71 @@ fn predictive_holds_the_corridor_under_each_recorded_noise() {
         }
     }
 }
+
+/// With a frame budget (`budget=true`: the renderer stops adding samples before the band's
+/// top and fills a frame that would end early), `predictive` keeps at least 97 % of the
+/// corridor sweep's frames in the band, or under it having drawn the most the bounds allow
+/// (S filled to its highest, at the highest R and scale), under every recorded machine's
+/// noise, the shared VM's too, where per-frame control alone cannot (its perfect aim: 69 to
+/// 79 %), with at most 3 reversals of its planned quality per 100 frames where the noise
+/// lets per-frame control hold the band ([`REVERSALS_ON_SHARED_NOISE`] elsewhere).
+#[test]
+fn predictive_with_a_frame_budget_holds_the_corridor_under_every_recorded_noise() {
+    for (file, profile) in recorded_profiles() {
+        for seed in SEEDS {
+            let mut model = RendererModel::corridor(FRAMES).with_machine_noise(profile.clone());
+            model.noise = 0.0;
+            model.seed = seed;
+            let setup = Setup::new(BAND, Bounds::default(), top()).unwrap();
+            let mut c = from_name("predictive", setup, "budget=true").unwrap();
+            let mut renderer = SimRenderer::new(model.clone());
+            let (mut records, mut ok) = (Vec::new(), 0);
+            for frame in 0..FRAMES + WARM_UP {
+                let q = c.quality();
+                let budget = c.frame_budget();
+                let load = model.profile.load(frame);
+                let report = renderer.render_within(frame, &load, q, budget.as_ref());
+                let drew_the_most = report.quality.spp >= top().spp
+                    && q.depth == top().depth
+                    && q.scale == top().scale;
+                if frame >= WARM_UP
+                    && (BAND.contains(report.tp_ms)
+                        || (report.tp_ms < BAND.tmin_ms() && drew_the_most))
+                {
+                    ok += 1;
+                }
+                let _ = c.observe(&report);
+                records.push(FrameRecord {
+                    frame,
+                    tp_ms: report.tp_ms,
+                    quality: q,
+                    rays: report.total_rays(),
+                });
+            }
+            let s = summarize(&records[WARM_UP..], BAND, top(), Some(&[]));
+            let ok_pct = 100.0 * f64::from(ok) / FRAMES as f64;
+            println!(
+                "budget {:40} seed {seed}: ok {ok_pct:5.1}% over {:4.1}% rev/100 {:4.2}",
+                profile.machine, s.over_pct, s.reversals_per_100
+            );
+            assert!(ok_pct >= 97.0, "{file} seed {seed}: {ok_pct} {s:?}");
+            let reversals = if perfect_aim_pct(&profile) >= HOLDABLE_PCT {
+                3.0
+            } else {
+                REVERSALS_ON_SHARED_NOISE
+            };
+            assert!(
+                s.reversals_per_100 <= reversals,
+                "{file} seed {seed}: {s:?}"
+            );
+        }
+    }
+}
+
+/// Under the shared VM's recorded noise the budget holds the band but its planned quality
+/// still follows the noise: 0.3 to 5 reversals per 100 frames over the seeds (a guard on
+/// the figures reached, not the 3 met).
+const REVERSALS_ON_SHARED_NOISE: f64 = 6.0;
 
 /// The same for `hysteresis`, which needs no cost model: the band kept at 95 %.
 #[test]

@@ -40,7 +40,7 @@ proptest! {
             let q = c.quality();
             let depth = q.depth as usize;
             let rays: Vec<u64> = (0..=depth).map(|k| (eye as f64 * decay.powi(k as i32)) as u64).collect();
-            let report = FrameReport { tp_ms, rays_per_depth: rays, shadow_rays: shadow, rays_stopped: None, pixels: eye.div_ceil(4), quality: q, speed_deg_s: speed };
+            let report = FrameReport { tp_ms, rays_per_depth: rays, shadow_rays: shadow, rays_stopped: None, pixels: eye.div_ceil(4), quality: q, speed_deg_s: speed, first_sample: None };
             let before = c.quality();
             match c.observe(&report) {
                 Ok(next) => {

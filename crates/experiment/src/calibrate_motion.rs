@@ -44,7 +44,7 @@ use steadyray_display::{DisplayConfig, DisplayFigures, RealClock, SyncMode, View
 use steadyray_motion::{MotionProbe, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
 use steadyray_render::sample_stream::check_reference_spp;
-use steadyray_render::{Renderer, SampleStream, check_image_size};
+use steadyray_render::{FrameBudget, Renderer, SampleStream, check_image_size};
 use steadyray_scene::{Camera, Scene};
 
 /// What to measure.
@@ -211,7 +211,12 @@ impl FrameSource for StimulusSource<'_> {
         self.duration_s
     }
 
-    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+    fn frame_within(
+        &mut self,
+        at: PathPoint,
+        q: Quality,
+        budget: Option<FrameBudget>,
+    ) -> Result<Measured> {
         let t_s = match at {
             PathPoint::Time { t_s, .. } => t_s,
             PathPoint::Frame { k, n } => self.duration_s * f64::from(k) / f64::from(n.max(1)),
@@ -224,7 +229,7 @@ impl FrameSource for StimulusSource<'_> {
             &mut *self.renderer,
             &camera,
             self.world_s,
-            q,
+            (q, budget),
         )
     }
 

@@ -8,7 +8,7 @@
 
 use anyhow::Result;
 use steadyray_control::{Controller, FrameReport, Quality, ReportError};
-use steadyray_render::{FrameStats, RenderSettings, Renderer, TimingSource};
+use steadyray_render::{FrameBudget, FrameStats, RenderSettings, Renderer, TimingSource};
 use steadyray_scene::Camera;
 
 /// GPU timestamps this far (ms) below the render call's wall time, and under a quarter of
@@ -131,13 +131,35 @@ impl FrameLoop {
         world_s: f64,
         q: Quality,
     ) -> Result<LoopFrame> {
+        self.render_within(renderer, camera, world_s, q, None)
+    }
+
+    /// [`FrameLoop::render`] within a frame's time `budget` when given
+    /// ([`Renderer::set_frame_budget`]; the renderer is left without one after the frame):
+    /// the report carries the S the frame reached.
+    pub fn render_within(
+        &mut self,
+        renderer: &mut dyn Renderer,
+        camera: &Camera,
+        world_s: f64,
+        q: Quality,
+        budget: Option<FrameBudget>,
+    ) -> Result<LoopFrame> {
         let settings = self.settings(q);
-        let stats = renderer.render(camera, world_s, &settings)?;
+        let stats = match budget {
+            None => renderer.render(camera, world_s, &settings)?,
+            Some(budget) => {
+                renderer.set_frame_budget(Some(budget))?;
+                let stats = renderer.render(camera, world_s, &settings);
+                renderer.set_frame_budget(None)?;
+                stats?
+            }
+        };
         Ok(self.frame(stats, settings, q))
     }
 
     /// The loop's frame of a render's `stats` at `settings` (quality `q`): the report the
-    /// controller sees, its Tp by [`ControllerClock`].
+    /// controller sees, its Tp by [`ControllerClock`], its S the one the frame reached.
     pub fn frame(&mut self, stats: FrameStats, settings: RenderSettings, q: Quality) -> LoopFrame {
         let time = self.clock.time(&stats);
         let report = FrameReport {
@@ -146,8 +168,12 @@ impl FrameLoop {
             shadow_rays: stats.rays.shadow,
             rays_stopped: Some(stats.rays.stopped),
             pixels: settings.pixels(),
-            quality: q,
+            quality: Quality {
+                spp: stats.spp,
+                ..q
+            },
             speed_deg_s: 0.0,
+            first_sample: None,
         };
         LoopFrame {
             report,
@@ -170,7 +196,8 @@ impl FrameLoop {
         speed_deg_s: impl FnOnce(&LoopFrame) -> Result<f64>,
     ) -> Result<(LoopFrame, Result<Quality, ReportError>)> {
         let q = controller.quality();
-        let mut frame = self.render(renderer, camera, world_s, q)?;
+        let budget = controller.frame_budget();
+        let mut frame = self.render_within(renderer, camera, world_s, q, budget)?;
         frame.report.speed_deg_s = speed_deg_s(&frame)?;
         let verdict = controller.observe(&frame.report);
         Ok((frame, verdict))
@@ -191,6 +218,7 @@ mod tests {
             width: 1,
             height: 1,
             samples: 1,
+            spp: 2.0,
         }
     }
 

@@ -30,12 +30,13 @@ use integrator::{SampleId, trace};
 use rayon::prelude::*;
 use render::{FrameOutputs, SamplePattern};
 use std::time::Instant;
+use steadyray_control::budget::spp_of_units;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_render::{
-    BackendInfo, FrameStats, Image, MAX_DEPTH, Picture, Presented, RenderError, RenderSettings,
-    Renderer, SampleStream, SettingsError, TemporalSettings, TimingSource, check_camera,
-    check_time,
+    BackendInfo, FrameBudget, FrameStats, Image, MAX_DEPTH, Picture, Presented, RenderError,
+    RenderSettings, Renderer, SampleStream, SettingsError, TemporalSettings, TimingSource,
+    check_camera, check_time,
 };
 use steadyray_scene::{Camera, Scene};
 use temporal::History;
@@ -53,6 +54,8 @@ pub struct CpuRenderer {
     /// The camera of the last warped refresh while it is on display: its picture is made
     /// again when read, rather than copied on every warp.
     warped: Option<Camera>,
+    /// The time budget plain frames are rendered within, if any.
+    budget: Option<FrameBudget>,
 }
 
 impl Default for CpuRenderer {
@@ -87,6 +90,7 @@ impl CpuRenderer {
             stream: SampleStream::Frames,
             history: None,
             warped: None,
+            budget: None,
         }
     }
 
@@ -211,10 +215,14 @@ impl Renderer for CpuRenderer {
         if let Some(history) = &self.history {
             history.clock.settings().check(settings)?;
         }
+        if self.budget.is_some() && self.history.is_some() {
+            return Err(budget_in_temporal_mode());
+        }
         self.warped = None;
         let start = Instant::now();
         let accel_ms = self.pool.install(|| world.set_time(time_s))?;
         let world = &*world;
+        let mut spp = settings.spp;
         let counts = match &mut self.history {
             None => {
                 let image = match &mut self.image {
@@ -232,8 +240,27 @@ impl Renderer for CpuRenderer {
                     sample_base,
                     still_frame: 0,
                 };
-                self.pool
-                    .install(|| render::render_frame(world, &frame, settings, pattern, outputs))
+                match &self.budget {
+                    None => self.pool.install(|| {
+                        render::render_frame(world, &frame, settings, pattern, outputs)
+                    }),
+                    Some(budget) => {
+                        let elapsed_ms = || start.elapsed().as_secs_f64() * 1e3;
+                        let (counts, units) = self.pool.install(|| {
+                            render::render_frame_within(
+                                world,
+                                &frame,
+                                settings,
+                                pattern,
+                                outputs.pixels,
+                                budget,
+                                elapsed_ms,
+                            )
+                        });
+                        spp = spp_of_units(units);
+                        counts
+                    }
+                }
             }
             Some(history) => {
                 // Rays follow the history's aspect, so every sample lies where it lands.
@@ -271,6 +298,7 @@ impl Renderer for CpuRenderer {
             wall_ms: ms,
             timing: TimingSource::WallClock,
             samples: rays.per_depth[0],
+            spp,
             rays,
             width,
             height,
@@ -330,4 +358,21 @@ impl Renderer for CpuRenderer {
     fn set_sample_stream(&mut self, stream: SampleStream) {
         self.stream = stream;
     }
+
+    fn set_frame_budget(&mut self, budget: Option<FrameBudget>) -> Result<(), RenderError> {
+        if budget.is_some() && self.history.is_some() {
+            return Err(budget_in_temporal_mode());
+        }
+        self.budget = budget;
+        Ok(())
+    }
+}
+
+/// Why a frame budget is refused in the temporal mode.
+fn budget_in_temporal_mode() -> RenderError {
+    RenderError::Unavailable(
+        "a frame budget needs plain frames: the temporal mode weighs each frame into its \
+         history by the S planned before it is rendered"
+            .into(),
+    )
 }

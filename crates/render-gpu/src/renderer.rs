@@ -15,8 +15,9 @@ use std::time::Instant;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::two_level::SceneLayout;
 use steadyray_render::{
-    BackendInfo, FrameStats, Image, Picture, Presented, RayCounts, RenderError, RenderSettings,
-    Renderer, SampleStream, TemporalSettings, TimingSource, check_camera, check_time,
+    BackendInfo, FrameBudget, FrameStats, Image, Picture, Presented, RayCounts, RenderError,
+    RenderSettings, Renderer, SampleStream, TemporalSettings, TimingSource, check_camera,
+    check_time,
 };
 use steadyray_scene::{Camera, Scene};
 
@@ -483,6 +484,7 @@ impl Renderer for GpuRenderer {
             wall_ms: wall_start.elapsed().as_secs_f64() * 1e3,
             timing,
             samples: rays.per_depth[0],
+            spp: settings.spp,
             rays,
             width,
             height,
@@ -591,6 +593,17 @@ impl Renderer for GpuRenderer {
 
     fn set_sample_stream(&mut self, stream: SampleStream) {
         self.stream = stream;
+    }
+
+    fn set_frame_budget(&mut self, budget: Option<FrameBudget>) -> Result<(), RenderError> {
+        match budget {
+            None => Ok(()),
+            Some(_) => Err(RenderError::Unavailable(
+                "a frame budget needs the CPU renderer: the GPU renders a frame's samples \
+                 in one submission and cannot stop it part-way"
+                    .into(),
+            )),
+        }
     }
 }
 

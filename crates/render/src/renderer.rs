@@ -2,6 +2,7 @@
 
 use crate::sample_stream::SampleStream;
 use crate::{FrameStats, Image, RenderSettings, SettingsError, TemporalSettings};
+use steadyray_control::FrameBudget;
 use steadyray_scene::{Camera, Scene};
 use thiserror::Error;
 
@@ -131,4 +132,12 @@ pub trait Renderer {
     /// rendered with [`SampleStream::Reference`], so that the frames it judges share none
     /// of its samples. Temporal frames draw their own, whatever the stream.
     fn set_sample_stream(&mut self, stream: SampleStream);
+    /// Renders the frames from now on within `budget` (`None`: each frame whole, at its
+    /// settings' S): the first sample of every pixel, then units of samples while the
+    /// budget allows ([`FrameBudget::run_units`]), past the settings' S when the frame
+    /// would end early; the frame's [`FrameStats::spp`] says the S it reached. A backend
+    /// that cannot stop a frame part-way (the GPU's, whose passes run as one submission)
+    /// refuses a budget with [`RenderError::Unavailable`], and so does the CPU renderer in
+    /// the temporal mode.
+    fn set_frame_budget(&mut self, budget: Option<FrameBudget>) -> Result<(), RenderError>;
 }

@@ -63,12 +63,19 @@ const BAYER8: [[u8; 8]; 8] = [
     [63, 31, 55, 23, 61, 29, 53, 21],
 ];
 
+/// Where pixel (px, py) stands in the 8×8 ordered-dither matrix, 0 to 63: at fractional S
+/// the pixels of lower rank take their extra sample first ([`samples_for_pixel`]), and a
+/// frame rendered within a time budget adds its units of samples to them first.
+pub fn dither_rank(px: u32, py: u32) -> u32 {
+    u32::from(BAYER8[(py & 7) as usize][(px & 7) as usize])
+}
+
 /// Eye rays for pixel (px, py) at fractional S: floor(S), plus one where the fractional part
 /// exceeds the pixel's Bayer threshold, so the mean over any 8×8 block is S to within 1/64.
 pub fn samples_for_pixel(px: u32, py: u32, spp: f32) -> u32 {
     let whole = spp.floor();
     let frac = spp - whole;
-    let threshold = (BAYER8[(py & 7) as usize][(px & 7) as usize] as f32 + 0.5) / 64.0;
+    let threshold = (dither_rank(px, py) as f32 + 0.5) / 64.0;
     whole as u32 + u32::from(frac > threshold)
 }
 

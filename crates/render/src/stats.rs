@@ -72,6 +72,9 @@ pub struct FrameStats {
     pub height: u32,
     /// Eye samples actually taken (S × pixels, with fractional S dithered).
     pub samples: u64,
+    /// The eye rays per pixel the frame took: the settings' S, or within a frame budget
+    /// ([`crate::Renderer::set_frame_budget`]) the mean S it reached.
+    pub spp: f32,
 }
 
 impl FrameStats {

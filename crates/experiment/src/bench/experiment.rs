@@ -54,7 +54,8 @@ pub fn run_controller(
     controller.reset();
     progress.set_message(name.to_string());
     for _ in 0..sweep.warmup {
-        let m = source.frame(sweep.at(0), controller.quality())?;
+        let m =
+            source.frame_within(sweep.at(0), controller.quality(), controller.frame_budget())?;
         // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
         let _ = controller.observe(&m.report);
         progress.inc(1);
@@ -69,7 +70,7 @@ pub fn run_controller(
         let target_ms = controller.target_frame_ms();
         let predicted_ms = controller.decision().and_then(|d| d.predicted_ms);
         let m = source
-            .frame(sweep.at(k), q)
+            .frame_within(sweep.at(k), q, controller.frame_budget())
             .with_context(|| format!("{name}: frame {k} at {q} failed"))?;
         let rays = m.report.total_rays();
         let tp_ms = m.report.tp_ms;
@@ -132,6 +133,7 @@ pub fn run_controller(
         flip: flip_stats(&flips),
         recorded,
         display: None,
+        budgeted: controller.frame_budget().is_some(),
     })
 }
 

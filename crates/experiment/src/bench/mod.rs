@@ -58,7 +58,7 @@ use runs::Runner;
 use screen_quality::{Described, measure_screens};
 use source::{FrameSource, RendererSource};
 use std::path::PathBuf;
-use steadyray_control::{Band, Quality};
+use steadyray_control::{Band, Quality, parse_controllers};
 use steadyray_display::{RealClock, RefreshBand, ViewingSetup};
 use steadyray_motion::{MotionProbe, MotionTracker};
 use steadyray_render::check_image_size;
@@ -169,6 +169,16 @@ pub struct BenchConfig {
     pub repeat: u32,
 }
 
+/// The controllers `bench` runs unless told others: the paper's baseline and rule, the
+/// rule on both knobs, `hysteresis` and `predictive`; on the CPU renderer and the
+/// simulated one under the frame clock without the temporal mode, also
+/// [`BUDGETED_CONTROLLER`].
+pub const DEFAULT_CONTROLLERS: &str = "fixed,step,step:knob=both,hysteresis,predictive";
+
+/// `predictive` handing each frame a time budget (`steadyray_control::budget`): the row the
+/// default controllers gain where the renderer can honour one.
+pub const BUDGETED_CONTROLLER: &str = "predictive:budget=true";
+
 impl Default for BenchConfig {
     /// The paper's experiment as `steadyray bench` runs it without arguments: every
     /// controller over a 720-frame sweep of the default scene in the 15–20 ms band, written
@@ -181,7 +191,7 @@ impl Default for BenchConfig {
             tmin: 15.0,
             tmax: 20.0,
             band: None,
-            controllers: "fixed,step,step:knob=both,hysteresis,predictive".into(),
+            controllers: DEFAULT_CONTROLLERS.into(),
             width: None,
             height: None,
             out: PathBuf::from("results/bench"),
@@ -222,6 +232,17 @@ fn default_resolution(backend: &str, device: &str) -> (u32, u32) {
     }
 }
 
+/// Whether the default controllers gain [`BUDGETED_CONTROLLER`]: asked for none other, under
+/// the frame clock without the temporal mode, on a renderer that honours a frame budget
+/// (the CPU renderer, the simulated one).
+fn takes_the_budgeted_row(config: &BenchConfig, backend: &str) -> bool {
+    config.controllers == DEFAULT_CONTROLLERS
+        && config.best_looking_fixed != BestLookingFixed::Only
+        && config.clock == ClockChoice::Frames
+        && config.temporal == TemporalChoice::Off
+        && matches!(backend, "cpu" | "simulated")
+}
+
 /// Runs the experiment and writes its reports: once into `config.out`, or `config.repeat`
 /// times with the repetitions' medians and ranges beside them ([`repeat::run_repeated`]).
 pub fn run(config: &BenchConfig) -> Result<()> {
@@ -244,6 +265,9 @@ pub fn run_once(config: &BenchConfig, repetition: u32) -> Result<()> {
         video::prepare(dir)?;
     }
     let (mut source, scene) = open_repetition_source(config, repetition)?;
+    if takes_the_budgeted_row(config, &source.describe().0) {
+        plan.specs.extend(parse_controllers(BUDGETED_CONTROLLER)?);
+    }
     let costs = measure_costs(config, &mut plan, source.as_mut())?;
     let bands = Bands::derive(config, &plan, &costs)?;
     let mut arms = build_arms(config, &plan, &costs, &bands)?;

@@ -237,7 +237,8 @@ fn warm_up(
     for k in (1..=sweep.warmup).rev() {
         let t_s = -f64::from(k) * period / 1000.0;
         lead_in_world_s = t_s;
-        let m = source.frame(PathPoint::Time { index: 0, t_s }, controller.quality())?;
+        let at = PathPoint::Time { index: 0, t_s };
+        let m = source.frame_within(at, controller.quality(), controller.frame_budget())?;
         let handed = source.hand_over()?;
         // A refused report (e.g. a 0 ms reading) leaves the controller as it was.
         let _ = controller.observe(&m.report);
@@ -300,7 +301,7 @@ pub fn run_controller_real(
             t_s: slot.world_s(),
         };
         let m = source
-            .frame(at, q)
+            .frame_within(at, q, controller.frame_budget())
             .with_context(|| format!("{name}: frame {} at {q} failed", slot.index))?;
         let handed = source.hand_over()?;
         last_busy_ms = m.report.tp_ms + handed.ms;
@@ -395,6 +396,7 @@ pub fn run_controller_real(
         summary,
         flip: None,
         recorded: Vec::new(),
+        budgeted: controller.frame_budget().is_some(),
         display: Some(DisplayRun {
             figures: DisplayFigures::of(&timeline),
             timeline,
@@ -416,7 +418,7 @@ mod tests {
     use std::collections::BTreeSet;
     use steadyray_control::{Quality, Setup, from_name};
     use steadyray_display::SyncMode;
-    use steadyray_render::SampleStream;
+    use steadyray_render::{FrameBudget, SampleStream};
 
     /// The simulated source, recording the path times it is asked for, the Tp of each frame
     /// and the times of the warps.
@@ -446,11 +448,16 @@ mod tests {
         fn path_duration_s(&self) -> f64 {
             self.inner.path_duration_s()
         }
-        fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+        fn frame_within(
+            &mut self,
+            at: PathPoint,
+            q: Quality,
+            budget: Option<FrameBudget>,
+        ) -> Result<Measured> {
             if let PathPoint::Time { t_s, .. } = at {
                 self.times.push(t_s);
             }
-            let m = self.inner.frame(at, q)?;
+            let m = self.inner.frame_within(at, q, budget)?;
             self.tps.push(m.report.tp_ms);
             Ok(m)
         }

@@ -114,6 +114,9 @@ pub struct ControllerRun {
     pub recorded: Vec<Rgb8Image>,
     /// What the viewer saw (real clock only).
     pub display: Option<DisplayRun>,
+    /// Whether the controller handed its frames a time budget
+    /// (`steadyray_control::FrameBudget`): their times were decided inside each frame.
+    pub budgeted: bool,
 }
 
 impl ControllerRun {
@@ -122,9 +125,10 @@ impl ControllerRun {
     /// quality was chosen by; see [`aim_ceiling()`]): what separates the controller's misses
     /// from the machine's. `None` for a run without predictions, and for one whose
     /// controller chose a frame time of its own each frame (`perceptual`), which no single
-    /// planned time describes.
+    /// planned time describes, or whose frames ran within a time budget, whose times the
+    /// renderer decided inside the frame and the plan no longer predicts.
     pub fn aim_ceiling(&self) -> Option<AimCeiling> {
-        if self.rows.iter().any(|r| r.target_ms.is_some()) {
+        if self.budgeted || self.rows.iter().any(|r| r.target_ms.is_some()) {
             return None;
         }
         let ratios = self

@@ -10,7 +10,7 @@ use steadyray_control::simulate::{RendererModel, SimRenderer, corridor_load};
 use steadyray_control::{FrameReport, Quality};
 use steadyray_motion::{MotionTracker, ScreenSpeed, Shot};
 use steadyray_quality::Rgb8Image;
-use steadyray_render::{Picture, Presented, Renderer, SampleStream, TemporalSettings};
+use steadyray_render::{FrameBudget, Picture, Presented, Renderer, SampleStream, TemporalSettings};
 use steadyray_scene::{Camera, Scene};
 
 /// One rendered (or simulated) frame as the experiment sees it.
@@ -70,7 +70,18 @@ pub trait FrameSource {
     /// The camera path's length in seconds (its default frames at 60 per second).
     fn path_duration_s(&self) -> f64;
     /// Renders the frame at `at` at quality `q`.
-    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured>;
+    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+        self.frame_within(at, q, None)
+    }
+    /// Renders the frame at `at` at quality `q` within a time `budget` when given (a
+    /// controller's [`steadyray_control::Controller::frame_budget`]): the report carries
+    /// the S the frame reached. A source that cannot honour a budget fails.
+    fn frame_within(
+        &mut self,
+        at: PathPoint,
+        q: Quality,
+        budget: Option<FrameBudget>,
+    ) -> Result<Measured>;
     /// Hands the last frame to the display and measures what that costs: a renderer's own
     /// way to a window (`Renderer::present`), with its picture read back for the scores
     /// outside that time; the simulated renderer takes [`SIM_HAND_OVER_MS`].
@@ -149,7 +160,12 @@ impl FrameSource for RendererSource {
         self.scene.path.duration_s()
     }
 
-    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
+    fn frame_within(
+        &mut self,
+        at: PathPoint,
+        q: Quality,
+        budget: Option<FrameBudget>,
+    ) -> Result<Measured> {
         let (camera, time_s) = match at {
             PathPoint::Frame { k, n } => {
                 (self.scene.camera_at(k, n), self.scene.path.frame_time(k, n))
@@ -161,7 +177,7 @@ impl FrameSource for RendererSource {
             self.renderer.as_mut(),
             &camera,
             time_s,
-            q,
+            (q, budget),
         )?;
         measured.speed = self.motion.next(Shot::at(camera, time_s))?;
         measured.report.speed_deg_s = measured.speed.mean_deg_s;
@@ -245,17 +261,17 @@ fn rgb8(picture: Picture) -> Result<Rgb8Image> {
     )?)
 }
 
-/// Renders `camera` at scene time `time_s` at quality `q` through `frame_loop` (its
-/// full-scale size scaled by `q.scale`, the controller's time by its rule) and measures it:
-/// no motion on screen yet (the caller measures it).
+/// Renders `camera` at scene time `time_s` at quality `q` within `budget`, if any, through
+/// `frame_loop` (its full-scale size scaled by `q.scale`, the controller's time by its
+/// rule) and measures it: no motion on screen yet (the caller measures it).
 pub fn render_measured(
     frame_loop: &mut FrameLoop,
     renderer: &mut dyn Renderer,
     camera: &Camera,
     time_s: f64,
-    q: Quality,
+    (q, budget): (Quality, Option<FrameBudget>),
 ) -> Result<Measured> {
-    let frame = frame_loop.render(renderer, camera, time_s, q)?;
+    let frame = frame_loop.render_within(renderer, camera, time_s, q, budget)?;
     Ok(Measured::of(frame, camera))
 }
 
@@ -314,18 +330,26 @@ impl FrameSource for SimulatedSource {
         f64::from(self.frames) / 60.0
     }
 
-    fn frame(&mut self, at: PathPoint, q: Quality) -> Result<Measured> {
-        let (report, turn) = match at {
+    fn frame_within(
+        &mut self,
+        at: PathPoint,
+        q: Quality,
+        budget: Option<FrameBudget>,
+    ) -> Result<Measured> {
+        let (index, load, turn) = match at {
             PathPoint::Frame { k, n } => (
-                self.renderer.render(k as usize, q),
+                k as usize,
+                self.renderer.model().profile.load(k as usize),
                 f64::from(k) / f64::from(n.max(1)),
             ),
             PathPoint::Time { index, t_s } => {
                 let turn = (t_s / self.path_duration_s()).rem_euclid(1.0);
-                let load = corridor_load(TAU * turn);
-                (self.renderer.render_load(index, &load, q), turn)
+                (index, corridor_load(TAU * turn), turn)
             }
         };
+        let report = self
+            .renderer
+            .render_within(index, &load, q, budget.as_ref());
         Ok(Measured {
             wall_ms: report.tp_ms,
             accel_ms: 0.0,
@@ -452,6 +476,7 @@ mod tests {
             width: 64,
             height: 36,
             samples: 1,
+            spp: 1.0,
         };
         let gpu = TimingSource::GpuTimestamps;
         let readings = [

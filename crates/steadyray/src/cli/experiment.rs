@@ -5,7 +5,7 @@ use super::{BoundsArgs, ClockChoice, DisplayArgs, SceneArgs, TemporalChoice};
 use clap::{Args, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use steadyray_display::RefreshBand;
-use steadyray_experiment::bench::{BenchConfig, BestLookingFixed};
+use steadyray_experiment::bench::{BenchConfig, BestLookingFixed, DEFAULT_CONTROLLERS};
 use steadyray_experiment::calibrate::CalibrateConfig;
 use steadyray_experiment::compare::CompareConfig;
 use steadyray_experiment::jod::JodCommand as JodConfig;
@@ -45,10 +45,9 @@ pub struct BenchArgs {
     /// `fixed` also adds the most-in-band fixed quality (unless --no-in-band-fixed) and, with
     /// --clock real --quality, the best-looking fixed quality (unless
     /// --no-best-looking-fixed). `steadyray controllers` lists every option.
-    #[arg(
-        long,
-        default_value = "fixed,step,step:knob=both,hysteresis,predictive"
-    )]
+    /// `predictive:budget=true` (each frame rendered within a time budget) joins the
+    /// default list on the CPU renderer under the frame clock.
+    #[arg(long, default_value = DEFAULT_CONTROLLERS)]
     pub controllers: String,
     /// Full-scale image width (default: suits the backend, so the band is reachable).
     #[arg(long)]

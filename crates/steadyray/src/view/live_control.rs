@@ -178,6 +178,7 @@ mod tests {
             pixels: 10_000,
             quality: q,
             speed_deg_s: 0.0,
+            first_sample: None,
         }
     }
 
@@ -259,6 +260,7 @@ mod tests {
                 pixels: 100_000,
                 quality: q,
                 speed_deg_s: 0.0,
+                first_sample: None,
             }
         };
         for _ in 0..30 {
