@@ -49,7 +49,7 @@ pub fn spp_of_units(units: u32) -> f32 {
 /// first sample of every pixel to take: the part of the frame no budget can cut. A timing
 /// spike of up to 1/0.7 = 1.43 times (the shared 2-core VM's 99th percentile, frame against
 /// its neighbours) during it still ends the frame in time.
-pub const BASE_SHARE: f64 = 0.7;
+pub const BASE_SHARE: f64 = 0.85;
 
 /// One frame's time budget (see the module documentation). Times are ms since the frame
 /// began, on the renderer's clock (the one Tp is measured on).
