@@ -51,7 +51,7 @@
 //! take.
 
 use crate::band::{Band, Position};
-use crate::budget::{BASE_SHARE, FrameBudget};
+use crate::budget::{self, BASE_SHARE, FrameBudget};
 use crate::controller::{Controller, Setup, parse_option, within};
 use crate::cost_model::{CostModel, CostParams, Fit};
 use crate::decision::{Action, Decision, Reason};
@@ -133,7 +133,7 @@ pub struct PredictiveParams {
     /// Default none.
     pub ladder: Option<Ladder>,
     /// `budget`: hand each frame a [`FrameBudget`] for the band
-    /// ([`FrameBudget::for_band`], filled up to the aim's target), so that a renderer
+    /// ([`budget::for_band`], filled up to the aim's target), so that a renderer
     /// that takes its samples a unit at a time ends the frame in the band against its own
     /// clock ([`crate::budget`]). Default false: the paper's per-frame control alone.
     pub budget: bool,
@@ -893,9 +893,11 @@ impl Controller for Predictive {
 
     fn frame_budget(&self) -> Option<FrameBudget> {
         self.params.budget.then(|| {
-            let band = self.setup.band;
-            FrameBudget::for_band(band, self.aim().target_ms, self.setup.bounds.spp_max)
-                .expect("a valid band and bounds make a valid budget")
+            budget::for_band(
+                self.setup.band,
+                self.aim().target_ms,
+                self.setup.bounds.spp_max,
+            )
         })
     }
 

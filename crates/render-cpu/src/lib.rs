@@ -30,7 +30,7 @@ use integrator::{SampleId, trace};
 use rayon::prelude::*;
 use render::{FrameOutputs, SamplePattern};
 use std::time::Instant;
-use steadyray_control::budget::spp_of_units;
+use steadyray_budget::spp_of_units;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_render::{

@@ -7,7 +7,7 @@ use crate::temporal::{Geometry, GeometrySink};
 use crate::world::World;
 use glam::Vec3A;
 use rayon::prelude::*;
-use steadyray_control::budget::{UNIT_GROUPS, UNIT_SAMPLES, units_for_spp};
+use steadyray_budget::{UNIT_GROUPS, UNIT_SAMPLES, units_for_spp};
 use steadyray_render::FrameBudget;
 use steadyray_render::sampling::{dither_rank, samples_for_pixel};
 use steadyray_render::temporal::jittered_sample;

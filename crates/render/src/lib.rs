@@ -25,6 +25,6 @@ pub use renderer::{
 pub use sample_stream::SampleStream;
 pub use settings::{MAX_DEPTH, MAX_SPP, RenderSettings, SettingsError, check_image_size};
 pub use stats::{FrameStats, RayCounts, TimingSource};
-/// A frame's time budget ([`Renderer::set_frame_budget`]), from the controller crate.
-pub use steadyray_control::FrameBudget;
+/// A frame's time budget ([`Renderer::set_frame_budget`]).
+pub use steadyray_budget::FrameBudget;
 pub use temporal::TemporalSettings;

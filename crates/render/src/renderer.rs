@@ -2,7 +2,7 @@
 
 use crate::sample_stream::SampleStream;
 use crate::{FrameStats, Image, RenderSettings, SettingsError, TemporalSettings};
-use steadyray_control::FrameBudget;
+use steadyray_budget::FrameBudget;
 use steadyray_scene::{Camera, Scene};
 use thiserror::Error;
 

@@ -47,8 +47,9 @@ impl Machine {
 /// dependencies. A commit that touches none of them (a controller, a report, the docs)
 /// renders the same references, so [`reference_revision`] keys them by the last commit that
 /// did.
-pub const REFERENCE_SOURCES: [&str; 9] = [
+pub const REFERENCE_SOURCES: [&str; 10] = [
     "crates/render",
+    "crates/budget",
     "crates/render-cpu",
     "crates/render-gpu",
     "crates/accel",
