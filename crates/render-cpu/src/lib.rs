@@ -30,7 +30,6 @@ use integrator::{SampleId, trace};
 use rayon::prelude::*;
 use render::{FrameOutputs, SamplePattern};
 use std::time::Instant;
-use steadyray_budget::spp_of_units;
 use steadyray_render::temporal::sample_base;
 use steadyray_render::tonemap::linear_to_srgb8_fast;
 use steadyray_render::{
@@ -246,7 +245,7 @@ impl Renderer for CpuRenderer {
                     }),
                     Some(budget) => {
                         let elapsed_ms = || start.elapsed().as_secs_f64() * 1e3;
-                        let (counts, units) = self.pool.install(|| {
+                        let counts = self.pool.install(|| {
                             render::render_frame_within(
                                 world,
                                 &frame,
@@ -257,7 +256,10 @@ impl Renderer for CpuRenderer {
                                 elapsed_ms,
                             )
                         });
-                        spp = spp_of_units(units);
+                        // The mean over the frame's pixels: the units' groups cover
+                        // shares of an image that differ a little from a sixteenth.
+                        let eye_rays = counts.ray_counts(0).per_depth[0];
+                        spp = (eye_rays as f64 / settings.pixels() as f64) as f32;
                         counts
                     }
                 }

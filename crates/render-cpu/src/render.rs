@@ -244,8 +244,8 @@ fn add_unit(
 /// pixel, then each unit a mirrored pair in the pixels of one group, summed in place in
 /// `pixels`; at the end each pixel is the mean of the samples it took. A pixel's samples
 /// are those a plain frame takes at an odd S, in the same order, so a frame that reaches
-/// whole pairs in every pixel is the plain frame at that S bit for bit. Returns the counts
-/// and the units rendered. `settings` must be valid.
+/// whole pairs in every pixel is the plain frame at that S bit for bit. Returns the counts.
+/// `settings` must be valid.
 pub(crate) fn render_frame_within(
     world: &World,
     frame: &CameraFrame,
@@ -254,7 +254,7 @@ pub(crate) fn render_frame_within(
     pixels: &mut [[f32; 3]],
     budget: &FrameBudget,
     elapsed_ms: impl Fn() -> f64,
-) -> (TileCounts, u32) {
+) -> TileCounts {
     let width = settings.width as usize;
     let eye = Vec3A::from(frame.eye);
     let sample = |px: u32, py: u32, i: u32, counts: &mut TileCounts| {
@@ -306,5 +306,5 @@ pub(crate) fn render_frame_within(
                 *out = (Vec3A::from(*out) / n as f32).to_array();
             }
         });
-    (counts, units)
+    counts
 }

@@ -59,10 +59,23 @@ fn a_spent_budget_leaves_one_sample_a_pixel() {
 
 #[test]
 fn a_fractional_s_is_reached_unit_by_unit_with_its_rays_counted() {
-    // S = 2: eight units of pairs, half the pixels at 3 samples, half at 1.
+    // S = 2: eight units of pairs, half the pixels at 3 samples, half at 1; the S reported
+    // is the frame's mean, eye rays over pixels.
     let (_, spp, rays) = render(Some(unbounded(2.0)), 2.0);
-    assert_eq!(spp, 2.0);
     assert_eq!(rays[0], 2 * 64 * 36, "eye rays");
+    assert_eq!(spp, rays[0] as f32 / (64.0 * 36.0));
+    // At a size whose 8×8 tiles split unevenly into the units' groups the mean moves off
+    // the plan (here 1.70 for 1.5, five tiles by three): the S reported is still the
+    // frame's own.
+    let scene = corridor();
+    let mut r = loaded(&scene);
+    r.set_frame_budget(Some(unbounded(1.5))).unwrap();
+    let stats = r
+        .render(&scene.camera, 0.0, &settings(37, 21, 1.5, 8))
+        .unwrap();
+    let mean = stats.rays.per_depth[0] as f32 / (37.0 * 21.0);
+    assert_eq!(stats.spp, mean);
+    assert!(stats.spp > 1.0 && stats.spp < 2.0, "{}", stats.spp);
 }
 
 #[test]
