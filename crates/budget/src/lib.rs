@@ -13,6 +13,7 @@
 //! [`FrameBudget::fill_until_ms`]. The frame then reports the S it reached, so the
 //! controller learns from the work actually done.
 
+use serde::{Deserialize, Serialize};
 use std::ops::Range;
 use thiserror::Error;
 
@@ -68,7 +69,7 @@ impl FrameBudget {
                 stop_by_ms,
             });
         }
-        if max_spp.is_nan() || max_spp < 1.0 {
+        if !max_spp.is_finite() || max_spp < 1.0 {
             return Err(BudgetError::BadSpp(max_spp));
         }
         Ok(Self {
@@ -128,6 +129,17 @@ impl FrameBudget {
     }
 }
 
+/// The rays and time of a budgeted frame's first sample of every pixel
+/// (the controller crate's `FrameReport::first_sample`): the part of the
+/// frame its planned quality fixed, whose time still shows what a ray costs.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FirstSample {
+    /// Rays traced: eye rays, deeper levels and shadow rays.
+    pub rays: u64,
+    /// Time from the frame's start to the end of the first sample, ms.
+    pub ms: f64,
+}
+
 /// Why a [`FrameBudget`] cannot be made.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum BudgetError {
@@ -153,8 +165,8 @@ pub enum BudgetError {
         /// The stopping time given, ms.
         stop_by_ms: f64,
     },
-    /// A most S under 1 or NaN.
-    #[error("frame budget: at most S = {0} eye rays per pixel: it must be at least 1")]
+    /// A most S under 1, infinite or NaN.
+    #[error("frame budget: at most S = {0} eye rays per pixel: it must be a number, at least 1")]
     BadSpp(f32),
 }
 

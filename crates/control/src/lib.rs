@@ -102,7 +102,7 @@ pub mod step;
 
 pub use aim_ceiling::{AimCeiling, aim_ceiling};
 pub use band::{Band, Position};
-pub use budget::FrameBudget;
+pub use budget::{FirstSample, FrameBudget};
 pub use controller::{
     CONTROLLER_NAMES, Controller, DisplayCosts, NoFiles, OptionFiles, Setup, from_name,
     from_name_with, parse_options,
@@ -118,6 +118,6 @@ pub use noise::{NoiseProcess, NoiseProfile, fit_profile};
 pub use perceptual::{Perceptual, PerceptualParams, Prospect};
 pub use predictive::{Aim, Predictive, PredictiveParams};
 pub use quality::{Bounds, Knob, KnobOrder, Quality};
-pub use report::{FirstSample, FrameReport, MAX_FRAME_MS, ReportError};
+pub use report::{FrameReport, MAX_FRAME_MS, ReportError};
 pub use spec::{ControllerSpec, SpecError, parse_controllers};
 pub use step::{Step, StepKnob, StepParams};

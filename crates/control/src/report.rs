@@ -3,6 +3,7 @@
 use crate::quality::Quality;
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
+use steadyray_budget::FirstSample;
 use thiserror::Error;
 
 /// The longest frame time a report may claim, ms (one minute). Longer times are refused as
@@ -42,16 +43,6 @@ pub struct FrameReport {
     pub first_sample: Option<FirstSample>,
 }
 
-/// The rays and time of a budgeted frame's first sample of every pixel
-/// ([`FrameReport::first_sample`]).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FirstSample {
-    /// Rays traced: eye rays, deeper levels and shadow rays.
-    pub rays: u64,
-    /// Time from the frame's start to the end of the first sample, ms.
-    pub ms: f64,
-}
-
 /// Why a report was refused. A refused report changes nothing: every controller returns the
 /// error, keeps its quality and leaves its history and model untouched.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -68,6 +59,12 @@ pub enum ReportError {
     /// The predictive controller needs ray counts and a pixel count; this report has none.
     #[error("the report has no rays or no pixels: the predictive controller needs both")]
     NoRays,
+    /// A first sample ([`FrameReport::first_sample`]) without rays, or whose time is not
+    /// a number above 0 ms and at most the frame's.
+    #[error(
+        "the first sample's time {0} ms is not above 0 and at most the frame's, or it has no rays"
+    )]
+    BadFirstSample(f64),
     /// The screen speed is NaN, infinite or negative (the `perceptual` controller reads it).
     #[error("screen speed {0} deg/s is invalid: it must be a finite number, 0 or more")]
     BadSpeed(f64),
@@ -120,7 +117,15 @@ impl FrameReport {
         if self.pixels == 0 || self.rays_per_depth.first().copied().unwrap_or(0) == 0 {
             return Err(ReportError::NoRays);
         }
-        Ok(())
+        match self.first_sample {
+            Some(first)
+                if !(first.ms.is_finite() && first.ms > 0.0 && first.ms <= self.tp_ms)
+                    || first.rays == 0 =>
+            {
+                Err(ReportError::BadFirstSample(first.ms))
+            }
+            _ => Ok(()),
+        }
     }
 }
 

@@ -10,12 +10,13 @@
 //! Everything random comes from a seeded PCG generator that draws the same numbers every
 //! frame whatever the controller does, so runs are reproducible and comparable.
 
+use crate::budget::FirstSample;
 use crate::budget::{FrameBudget, spp_of_units, units_for_spp};
 use crate::controller::Controller;
 use crate::metrics::FrameRecord;
 use crate::noise::{NoiseProcess, NoiseProfile};
 use crate::quality::Quality;
-use crate::report::{FirstSample, FrameReport};
+use crate::report::FrameReport;
 use std::cell::Cell;
 use std::f64::consts::TAU;
 

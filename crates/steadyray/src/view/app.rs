@@ -220,9 +220,14 @@ impl Live {
         if let Err(e) = device.poll(wgpu::PollType::wait_indefinitely()) {
             return Err(anyhow!("waiting for the GPU failed: {e}"));
         }
-        let frame = self
-            .frame_loop
-            .render(self.renderer.renderer(), &camera, scene_time_s, q)?;
+        let budget = self.control.frame_budget();
+        let frame = self.frame_loop.render_within(
+            self.renderer.renderer(),
+            &camera,
+            scene_time_s,
+            q,
+            budget,
+        )?;
         self.warpable = self.history.is_some();
         if frame.time.switched {
             log::warn!(

@@ -6,8 +6,8 @@
 use anyhow::{Result, bail};
 use steadyray_control::ControllerSpec;
 use steadyray_control::{
-    Band, Bounds, CONTROLLER_NAMES, Controller, DisplayCosts, FrameReport, Quality, ReportError,
-    Setup, from_name_with,
+    Band, Bounds, CONTROLLER_NAMES, Controller, DisplayCosts, FrameBudget, FrameReport, Quality,
+    ReportError, Setup, from_name_with,
 };
 use steadyray_experiment::files::DiskFiles;
 
@@ -85,6 +85,12 @@ impl LiveControl {
     /// The frame time the controller has chosen (`perceptual`), ms.
     pub fn target_frame_ms(&self) -> Option<f64> {
         self.controller.target_frame_ms()
+    }
+
+    /// The time budget the controller hands the next frame, if it hands any
+    /// (`predictive:budget=true`).
+    pub fn frame_budget(&self) -> Option<FrameBudget> {
+        self.controller.frame_budget()
     }
 
     /// The quality of the next frame.
