@@ -20,11 +20,17 @@ pub const STOP_MARGIN: f64 = 0.1;
 /// displayed FLIP 0.0075 against 0.0067 at 0.85 (98.9 %), `predictive` alone 0.0063.
 pub const BASE_SHARE: f64 = 0.85;
 
+/// The time a frame in `band` must stop adding samples by: [`STOP_MARGIN`] of the band
+/// below its top.
+pub fn stop_by_ms(band: Band) -> f64 {
+    band.tmax_ms() - STOP_MARGIN * band.width_ms()
+}
+
 /// The budget that keeps frames in `band` aiming at `target_ms`: filled up to the target,
 /// stopped [`STOP_MARGIN`] of the band below its top, filled up to `max_spp` (at least 1).
 /// `target_ms` is clamped into the band's stopping range.
 pub fn for_band(band: Band, target_ms: f64, max_spp: f32) -> FrameBudget {
-    let stop_by = band.tmax_ms() - STOP_MARGIN * band.width_ms();
+    let stop_by = stop_by_ms(band);
     FrameBudget::new(
         target_ms.clamp(band.tmin_ms(), stop_by),
         stop_by,

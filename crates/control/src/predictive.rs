@@ -452,12 +452,13 @@ impl Predictive {
     /// to take at most `share` × [`BASE_SHARE`] of the time the frame must stop by (the
     /// rest of `q`'s S is what the budget cuts or fills).
     fn base_fits(&self, q: &Quality, share: f64) -> bool {
-        let Some(budget) = self.frame_budget() else {
+        if !self.params.budget {
             return true;
-        };
+        }
+        let stop_by = budget::stop_by_ms(self.setup.band);
         let base = Quality { spp: 1.0, ..*q };
         self.predict_ms(&base)
-            .is_some_and(|t| t <= share * BASE_SHARE * budget.stop_by_ms)
+            .is_some_and(|t| t <= share * BASE_SHARE * stop_by)
     }
 
     /// The predicted times the current quality is held for: `aim`'s inner band, but only
